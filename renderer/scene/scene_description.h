@@ -1,0 +1,140 @@
+#pragma once
+// The parsed, validated content of a `vesper-scene/1` file, in the file's own
+// units and double precision. Nothing here is camera-relative or Embree-ready;
+// scene/scene_builder turns it into the render-time Scene.
+//
+// Every field below has been validated by the loader: finite numbers, positive
+// sizes, existing materials, readable files. Code that consumes a
+// SceneDescription may rely on that.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "renderer/math/rgb.h"
+#include "renderer/math/vec.h"
+
+namespace vesper {
+
+struct CameraDesc {
+  Vec3d from{0, 0, 1}, to{0, 0, 0}, up{0, 1, 0};
+  double fov_degrees = 40;      // across the shorter image axis
+  double aperture = 0;          // lens diameter in scene units; 0 = pinhole
+  double focus_distance = 1;    // distance along the view direction to the focal plane
+};
+
+enum class FilterType { Box, Gaussian };
+
+struct FilmDesc {
+  int width = 256, height = 256;
+  FilterType filter = FilterType::Box;
+};
+
+enum class Aov { Albedo, Normal, Depth };
+
+struct RenderDesc {
+  int spp = 16;
+  int max_depth = 8;  // scattering events after the camera vertex; 1 = direct light only
+  uint64_t seed = 0;
+  std::vector<Aov> aovs;  // requested AOVs (render.aovs), in request order, no duplicates
+};
+
+struct DiffuseMaterialDesc {
+  Rgb albedo{0.8f};
+};
+struct ConductorMaterialDesc {
+  double roughness = 0;              // perceptual; GGX alpha = roughness^2
+  Rgb eta{0.2f, 0.92f, 1.1f};        // defaults: gold-ish
+  Rgb k{3.9f, 2.45f, 2.14f};
+};
+struct DielectricMaterialDesc {
+  double ior = 1.5;
+  double roughness = 0;
+};
+struct PrincipledMaterialDesc {
+  Rgb base_color{0.8f};
+  double metallic = 0;
+  double roughness = 0.5;
+};
+using MaterialDesc = std::variant<DiffuseMaterialDesc, ConductorMaterialDesc,
+                                  DielectricMaterialDesc, PrincipledMaterialDesc>;
+
+// Row-major 4x4 affine transform (last row 0 0 0 1) applied to points.
+struct Transform {
+  std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  Vec3d apply_point(const Vec3d& p) const {
+    return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+            m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
+  }
+};
+
+struct QuadShapeDesc {
+  Vec3d corner, edge1, edge2;
+};
+struct SphereShapeDesc {
+  Vec3d center;
+  double radius = 1;
+};
+// A triangle mesh, already loaded (from `file` or inline) and transformed to world space.
+struct MeshShapeDesc {
+  std::vector<Vec3d> positions;
+  std::vector<std::array<uint32_t, 3>> triangles;  // every index < positions.size()
+  std::string source;  // file path or "inline", for messages
+};
+struct ShapeDesc {
+  std::variant<QuadShapeDesc, SphereShapeDesc, MeshShapeDesc> geometry;
+  uint32_t material = 0;  // index into SceneDescription::materials
+};
+
+struct QuadLightDesc {
+  Vec3d corner, edge1, edge2;
+  Rgb radiance;  // emitted toward normalize(cross(edge1, edge2)), one-sided
+};
+struct PointLightDesc {
+  Vec3d position;
+  Rgb intensity;  // W/sr
+};
+struct SpotLightDesc {
+  Vec3d position, direction;  // direction normalized by the loader
+  Rgb intensity;
+  double cone_angle = 30, falloff_start = 25;  // half-angles, degrees; falloff_start <= cone_angle
+};
+struct SunLightDesc {
+  Vec3d direction;  // from the scene toward the sun, normalized by the loader
+  Rgb irradiance;   // measured perpendicular to `direction`
+  double angle = 0;  // angular diameter in degrees; 0 = delta directional light
+};
+// Lat-long image, row 0 at the top (+Y pole). Pixels linear RGB, finite, >= 0.
+struct EnvironmentImage {
+  int width = 0, height = 0;
+  std::vector<Rgb> pixels;  // width * height, row-major
+};
+struct EnvironmentLightDesc {
+  Rgb radiance{1.f};                      // constant radiance when `image` is empty
+  std::optional<EnvironmentImage> image;  // from `file`
+  std::string file;                       // resolved path, for messages and the scene hash
+  double scale = 1;
+  double rotation = 0;  // degrees about +Y
+};
+struct LightDesc {
+  std::variant<QuadLightDesc, PointLightDesc, SpotLightDesc, SunLightDesc, EnvironmentLightDesc> light;
+  std::string group;  // empty = no group
+};
+
+struct SceneDescription {
+  std::filesystem::path file;  // the scene file, for messages
+  CameraDesc camera;
+  FilmDesc film;
+  RenderDesc render;
+  std::vector<std::string> material_names;  // parallel to materials
+  std::vector<MaterialDesc> materials;
+  std::vector<ShapeDesc> shapes;
+  std::vector<LightDesc> lights;  // at most one environment light
+  std::string content_hash;  // sha256-like hex digest of the canonical JSON text + referenced files
+};
+
+}  // namespace vesper
