@@ -1,0 +1,27 @@
+#pragma once
+// Progress for long work: a redrawn bar with ETA on a terminal, plain lines
+// (every 10%) when stderr is a pipe or a log file.
+#include <chrono>
+#include <cstddef>
+#include <mutex>
+#include <string>
+
+namespace vesper::cli {
+
+class Progress {
+ public:
+  explicit Progress(std::string label);
+  // Thread-safe; cheap enough to call after every tile.
+  void update(size_t done, size_t total);
+  void finish();
+
+ private:
+  std::string label_;
+  bool tty_;
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point start_, last_draw_;
+  int last_decile_ = -1;
+  bool finished_ = false;
+};
+
+}  // namespace vesper::cli

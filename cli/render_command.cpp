@@ -1,0 +1,91 @@
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "renderer/output/exr_io.h"
+#include "renderer/render/render.h"
+#include "renderer/scene/scene_loader.h"
+
+namespace vesper::cli {
+namespace {
+
+std::vector<Aov> parse_aovs(const std::string& list) {
+  std::vector<Aov> aovs;
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t end = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, end - start);
+    Aov a;
+    if (name == "albedo") a = Aov::Albedo;
+    else if (name == "normal") a = Aov::Normal;
+    else if (name == "depth") a = Aov::Depth;
+    else throw std::invalid_argument("--aov: unknown AOV '" + name + "' (expected albedo, normal, depth)");
+    if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
+    start = end + 1;
+  }
+  return aovs;
+}
+
+}  // namespace
+
+int run_render(const RenderCommandOptions& o) {
+  RenderOptions ro;
+  try {
+    if (o.aovs) ro.aovs = parse_aovs(*o.aovs);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  SceneDescription desc;
+  try {
+    desc = load_scene(o.scene);
+  } catch (const SceneError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  const std::filesystem::path out_path(o.output);
+  if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path())) {
+    spdlog::error("{}: output directory does not exist", out_path.parent_path().string());
+    return 2;
+  }
+  ro.spp = o.spp;
+  ro.seed = o.seed;
+  if (o.threads) ro.threads = *o.threads;
+  ro.sample_begin = o.sample_begin;
+  ro.sample_end = o.sample_end;
+  const int spp = o.spp.value_or(desc.render.spp);
+  if (ro.sample_begin < 0 || ro.sample_end.value_or(spp) < ro.sample_begin) {
+    spdlog::error("--samples: expected 0 <= begin <= end, got [{}, {})", ro.sample_begin,
+                  ro.sample_end.value_or(spp));
+    return 2;
+  }
+
+  const Scene scene = build_scene(desc);
+  if (!o.quiet)
+    spdlog::info("{}: {}x{}, {} spp, {} primitives, {} lights", o.scene, desc.film.width, desc.film.height,
+                 ro.sample_end.value_or(spp) - ro.sample_begin, scene.accel->primitive_count(),
+                 scene.lights.size());
+  Progress progress("render");
+  if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
+  RenderResult result = render(scene, ro);
+  progress.finish();
+
+  try {
+    write_exr(result.image, out_path);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  const double mrays = double(result.stats.rays) / result.stats.seconds * 1e-6;
+  if (result.stats.nonfinite_samples > 0)
+    spdlog::warn("{} non-finite samples were caught and dropped", result.stats.nonfinite_samples);
+  if (!o.quiet)
+    spdlog::info("wrote {} ({:.2f} s, {:.1f} Mrays/s)", out_path.string(), result.stats.seconds, mrays);
+  std::printf("%s\n", out_path.string().c_str());
+  return 0;
+}
+
+}  // namespace vesper::cli

@@ -1,0 +1,42 @@
+#pragma once
+// Spot light: radiant intensity times a smoothstep falloff between the
+// falloff_start and cone_angle half-angles (as pbrt-v4's SpotLight).
+#include <cmath>
+#include <optional>
+
+#include "renderer/lights/light_sample.h"
+#include "renderer/math/constants.h"
+
+namespace vesper {
+
+inline float smoothstep(float a, float b, float x) {
+  if (a == b) return x < a ? 0.f : 1.f;
+  const float t = clamp((x - a) / (b - a), 0.f, 1.f);
+  return t * t * (3.f - 2.f * t);
+}
+
+struct SpotLight {
+  Vec3 position, direction;  // direction: unit, the cone axis
+  Rgb intensity;
+  float cos_cone = 0.f;           // cos(cone_angle)
+  float cos_falloff_start = 0.f;  // cos(falloff_start) >= cos_cone
+
+  float falloff(const Vec3& w_from_light) const {
+    return smoothstep(cos_cone, cos_falloff_start, dot(w_from_light, direction));
+  }
+  std::optional<LightSample> sample(const Vec3& p) const {
+    const Vec3 d = position - p;
+    const float dist2 = length_squared(d);
+    if (!(dist2 > 0.f)) return std::nullopt;
+    const float dist = std::sqrt(dist2);
+    const Vec3 wi = d / dist;
+    const float f = falloff(-wi);
+    if (f <= 0.f) return std::nullopt;
+    return LightSample{intensity * (f / dist2), wi, dist, 1.f, true};
+  }
+  float power() const {
+    return intensity.average() * 2.f * kPi * (1.f - 0.5f * (cos_falloff_start + cos_cone));
+  }
+};
+
+}  // namespace vesper

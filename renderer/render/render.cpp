@@ -1,0 +1,143 @@
+#include "renderer/render/render.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
+
+#include "renderer/integrator/path_tracer.h"
+#include "renderer/sampling/pixel_filter.h"
+
+namespace vesper {
+namespace {
+
+constexpr int kTileSize = 16;
+
+struct ChannelLayout {
+  int albedo = -1, normal = -1, depth = -1;
+  std::vector<std::string> names{"R", "G", "B", "A"};
+};
+
+ChannelLayout layout_for(const std::vector<Aov>& aovs) {
+  ChannelLayout l;
+  for (Aov a : aovs) {
+    const int at = int(l.names.size());
+    switch (a) {
+      case Aov::Albedo:
+        l.albedo = at;
+        l.names.insert(l.names.end(), {"albedo.R", "albedo.G", "albedo.B"});
+        break;
+      case Aov::Normal:
+        l.normal = at;
+        l.names.insert(l.names.end(), {"normal.X", "normal.Y", "normal.Z"});
+        break;
+      case Aov::Depth:
+        l.depth = at;
+        l.names.push_back("depth.Z");
+        break;
+    }
+  }
+  return l;
+}
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const RenderOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int width = scene.film.width, height = scene.film.height;
+  const int spp = options.spp.value_or(scene.render.spp);
+  const int sample_begin = options.sample_begin;
+  const int sample_end = options.sample_end.value_or(spp);
+  const uint64_t seed = options.seed.value_or(scene.render.seed);
+  const std::vector<Aov>& aovs = options.aovs ? *options.aovs : scene.render.aovs;
+  const ChannelLayout layout = layout_for(aovs);
+  const size_t nch = layout.names.size();
+
+  RenderResult out;
+  LayeredImage& img = out.image;
+  img.width = width;
+  img.height = height;
+  img.channels = layout.names;
+  img.pixels.assign(size_t(width) * size_t(height) * nch, 0.f);
+
+  PathTracerOptions pt;
+  pt.max_depth = scene.render.max_depth;
+  pt.want_aovs = !aovs.empty();
+
+  const int tiles_x = (width + kTileSize - 1) / kTileSize;
+  const int tiles_y = (height + kTileSize - 1) / kTileSize;
+  const size_t tiles_total = size_t(tiles_x) * size_t(tiles_y);
+  std::atomic<size_t> tiles_done{0};
+  std::atomic<uint64_t> total_rays{0}, total_nonfinite{0};
+  const int count = std::max(0, sample_end - sample_begin);
+
+  auto render_tile = [&](size_t tile) {
+    set_flush_to_zero();
+    const int tx = int(tile % size_t(tiles_x)), ty = int(tile / size_t(tiles_x));
+    uint64_t rays = 0, nonfinite = 0;
+    std::vector<double> acc(nch);
+    for (int y = ty * kTileSize; y < std::min(height, (ty + 1) * kTileSize); ++y) {
+      for (int x = tx * kTileSize; x < std::min(width, (tx + 1) * kTileSize); ++x) {
+        std::fill(acc.begin(), acc.end(), 0.0);
+        const uint64_t pixel_index = uint64_t(y) * uint64_t(width) + uint64_t(x);
+        for (int s = sample_begin; s < sample_end; ++s) {
+          Sampler sampler(seed, pixel_index, uint64_t(s));
+          const Vec2 offset = sample_pixel_filter(scene.film.filter, sampler.next2());
+          const Vec2 u_lens = sampler.next2();
+          const Ray ray =
+              scene.camera.generate_ray(float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y, u_lens);
+          const PathResult r = trace_path(scene, ray, sampler, pt);
+          rays += r.rays;
+          // A non-finite value would poison the whole pixel: drop the sample, count it.
+          if (!r.radiance.is_finite()) {
+            ++nonfinite;
+          } else {
+            acc[0] += r.radiance.r;
+            acc[1] += r.radiance.g;
+            acc[2] += r.radiance.b;
+          }
+          acc[3] += r.alpha;
+          if (layout.albedo >= 0 && r.albedo.is_finite())
+            for (int c = 0; c < 3; ++c) acc[size_t(layout.albedo + c)] += r.albedo[c];
+          if (layout.normal >= 0 && is_finite(r.normal))
+            for (int c = 0; c < 3; ++c) acc[size_t(layout.normal + c)] += r.normal[c];
+          if (layout.depth >= 0 && std::isfinite(r.depth)) acc[size_t(layout.depth)] += r.depth;
+        }
+        const double inv = count > 0 ? 1.0 / double(count) : 0.0;
+        for (size_t c = 0; c < nch; ++c) img.at(x, y, c) = float(acc[c] * inv);
+      }
+    }
+    total_rays += rays;
+    total_nonfinite += nonfinite;
+    const size_t done = ++tiles_done;
+    if (options.on_progress) options.on_progress(done, tiles_total);
+  };
+
+  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles_total, 1),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        for (size_t t = r.begin(); t != r.end(); ++t) render_tile(t);
+                      });
+  });
+
+  out.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.stats.camera_samples = uint64_t(width) * uint64_t(height) * uint64_t(count);
+  out.stats.rays = total_rays;
+  out.stats.nonfinite_samples = total_nonfinite;
+
+  img.metadata["vesper:scene_hash"] = scene.content_hash;
+  img.metadata["vesper:spp"] = std::to_string(count);
+  img.metadata["vesper:sample_begin"] = std::to_string(sample_begin);
+  img.metadata["vesper:sample_end"] = std::to_string(sample_end);
+  img.metadata["vesper:seed"] = std::to_string(seed);
+  img.metadata["vesper:renderer_version"] = VESPER_VERSION;
+  img.metadata["vesper:render_seconds"] = std::to_string(out.stats.seconds);
+  img.metadata["vesper:nonfinite_samples"] = std::to_string(out.stats.nonfinite_samples);
+  return out;
+}
+
+}  // namespace vesper

@@ -1,0 +1,41 @@
+#pragma once
+// Renders a scene into a layered float image: tiles over TBB threads, each
+// pixel's samples depending only on (seed, pixel, sample index).
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "renderer/output/layered_image.h"
+#include "renderer/scene/scene.h"
+
+namespace vesper {
+
+struct RenderOptions {
+  int threads = 0;                     // 0 = all hardware threads
+  std::optional<int> spp;              // overrides render.spp
+  std::optional<uint64_t> seed;        // overrides render.seed
+  std::optional<std::vector<Aov>> aovs;  // overrides render.aovs
+  // Renders sample indices [sample_begin, sample_end) of the pixel estimate;
+  // sample_end defaults to spp. Disjoint ranges merge by sample count.
+  int sample_begin = 0;
+  std::optional<int> sample_end;
+  // Called from worker threads after each tile (must be thread-safe).
+  std::function<void(size_t tiles_done, size_t tiles_total)> on_progress;
+};
+
+struct RenderStats {
+  double seconds = 0;
+  uint64_t camera_samples = 0;
+  uint64_t rays = 0;              // intersection + occlusion queries
+  uint64_t nonfinite_samples = 0; // NaN/Inf path values caught and dropped
+};
+
+struct RenderResult {
+  LayeredImage image;
+  RenderStats stats;
+};
+
+RenderResult render(const Scene& scene, const RenderOptions& options = {});
+
+}  // namespace vesper

@@ -1,0 +1,38 @@
+#pragma once
+// The render-time scene: camera-relative, rescaled to unit size, with Embree
+// geometry, BSDFs and lights ready for the integrator.
+//
+// Render space = (world - camera position) / unit_scale. Keeping the camera at
+// the origin and the scene near unit size keeps float precision and ray
+// offsets independent of where the scene sits and how large it is.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer/bsdf/bsdf.h"
+#include "renderer/core/accel.h"
+#include "renderer/core/camera.h"
+#include "renderer/lights/light.h"
+#include "renderer/scene/scene_description.h"
+
+namespace vesper {
+
+struct Scene {
+  Camera camera;
+  FilmDesc film;
+  RenderDesc render;
+  std::vector<Bsdf> materials;
+  std::vector<Light> lights;
+  std::vector<std::string> light_groups;  // parallel to lights; "" = no group
+  std::vector<uint32_t> infinite_lights;  // lights a ray that escapes can hit
+  LightSampler light_sampler;
+  std::unique_ptr<Accel> accel;
+  Vec3d origin;            // world position of render-space (0,0,0)
+  double unit_scale = 1;   // world units per render-space unit
+  float radius = 1;        // bounding radius of the render-space scene around the origin
+  std::string content_hash;
+};
+
+Scene build_scene(const SceneDescription& desc);
+
+}  // namespace vesper
