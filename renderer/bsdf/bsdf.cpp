@@ -1,0 +1,31 @@
+#include "renderer/bsdf/bsdf.h"
+
+#include "renderer/bsdf/conductor.h"
+#include "renderer/bsdf/dielectric.h"
+#include "renderer/bsdf/diffuse.h"
+#include "renderer/bsdf/principled.h"
+
+// Closed-set dispatch: each alternative's functions live in its own header.
+namespace vesper {
+
+Rgb bsdf_eval(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi) {
+  return std::visit([&](const auto& b) { return bsdf_detail::eval(b, wo, wi); }, bsdf);
+}
+
+float bsdf_pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi) {
+  return std::visit([&](const auto& b) { return bsdf_detail::pdf(b, wo, wi); }, bsdf);
+}
+
+std::optional<BsdfSample> bsdf_sample(const Bsdf& bsdf, const Vec3& wo, float uc, const Vec2& u) {
+  return std::visit([&](const auto& b) { return bsdf_detail::sample(b, wo, uc, u); }, bsdf);
+}
+
+bool bsdf_is_delta(const Bsdf& bsdf) {
+  return std::visit([](const auto& b) { return bsdf_detail::is_delta(b); }, bsdf);
+}
+
+Rgb bsdf_albedo(const Bsdf& bsdf) {
+  return std::visit([](const auto& b) { return bsdf_detail::albedo(b); }, bsdf);
+}
+
+}  // namespace vesper
