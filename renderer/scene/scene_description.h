@@ -134,7 +134,8 @@ struct SceneDescription {
   std::vector<MaterialDesc> materials;
   std::vector<ShapeDesc> shapes;
   std::vector<LightDesc> lights;  // at most one environment light
-  std::string content_hash;  // sha256-like hex digest of the canonical JSON text + referenced files
+  // FNV-1a 64 (16 hex digits) of the canonical JSON text + bytes of referenced files.
+  std::string content_hash;
 };
 
 }  // namespace vesper

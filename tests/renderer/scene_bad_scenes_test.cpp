@@ -1,0 +1,121 @@
+// Every malformed scene under data/bad_scenes/ must be rejected with a
+// SceneError naming the file, the JSON path and what was expected.
+#include <algorithm>
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "renderer/scene/scene_loader.h"
+
+namespace vesper {
+namespace {
+
+const std::filesystem::path kBadDir = std::filesystem::path(VESPER_TEST_DATA_DIR) / "bad_scenes";
+
+struct BadScene {
+  const char* file;
+  const char* path;     // substring of the JSON path (or "line L, column C" for syntax errors)
+  const char* message;  // substring of the message
+};
+
+void PrintTo(const BadScene& s, std::ostream* os) { *os << s.file; }
+
+// clang-format off
+const BadScene kBadScenes[] = {
+    {"bad_type_radius.json", "/shapes/0/radius", "expected a positive number, got string \"1\""},
+    {"missing_camera.json", "/", "missing required key 'camera'"},
+    {"unknown_key_shape.json", "/shapes/0/radus", "unknown key 'radus' (expected one of: type, center, radius, material); did you mean 'radius'?"},
+    {"typo_in_material_key.json", "/materials/white/albdo", "did you mean 'albedo'?"},
+    {"nan_literal.json", "line 27, column", "invalid JSON"},
+    {"inf_number.json", "line 27, column 17", "number overflow parsing '1e999'"},
+    {"negative_radius.json", "/shapes/0/radius", "expected a positive number, got -1"},
+    {"unknown_material.json", "/shapes/0/material", "unknown material \"blu\" (known materials: white)"},
+    {"missing_mesh_file.json", "/shapes/0/file", "mesh file not found"},
+    {"mesh_file_wrong_extension.json", "/shapes/0/file", "expected a .ply or .obj mesh file"},
+    {"mesh_file_unparsable.json", "/shapes/0/file", "broken.ply': invalid PLY header: no 'end_header' line"},
+    {"mesh_file_without_triangles.json", "/shapes/0/file", "points_only.ply' contains no triangles"},
+    {"mesh_file_and_positions.json", "/shapes/0", "either 'file' or 'positions' + 'indices', not both"},
+    {"wrong_format_version.json", "/format", "expected \"vesper-scene/1\", got string \"vesper-scene/2\""},
+    {"fov_out_of_range.json", "/camera/fov", "expected a number in (0, 180), got 180"},
+    {"indices_out_of_range.json", "/shapes/0/indices/5", "expected an integer in [0, 3], got 4"},
+    {"positions_not_multiple_of_3.json", "/shapes/0/positions", "multiple of 3"},
+    {"two_environments.json", "/lights/1", "at most one environment light"},
+    {"spot_falloff_greater_than_cone.json", "/lights/0/falloff_start", "expected falloff_start <= cone_angle (30), got 35"},
+    {"radiance_negative.json", "/lights/0/radiance/1", "expected a non-negative number, got -1"},
+    {"width_not_integer.json", "/film/width", "expected an integer in [1, 65536], got 64.5"},
+    {"trailing_comma.json", "line 9, column", "invalid JSON"},
+    {"env_file_and_radiance.json", "/lights/0", "either 'radiance' or 'file', not both"},
+    {"missing_env_file.json", "/lights/0/file", "environment image not found"},
+    {"transform_both_forms.json", "/shapes/0/transform", "not both forms"},
+    {"matrix_last_row_not_affine.json", "/shapes/0/transform/matrix", "last row is [0, 0, 0, 1]"},
+    {"matrix_singular.json", "/shapes/0/transform/matrix", "non-singular"},
+    {"rotate_axis_zero.json", "/shapes/0/transform/rotate/axis", "non-zero rotation axis"},
+    {"unknown_light_type.json", "/lights/0/type", "expected one of \"quad\", \"point\", \"spot\", \"sun\", \"environment\", got string \"area\""},
+    {"spp_zero.json", "/render/spp", "expected an integer in [1, 2147483647], got 0"},
+    {"unknown_aov.json", "/render/aovs/1", "expected one of \"albedo\", \"normal\", \"depth\", got string \"normals\""},
+    {"duplicate_aov.json", "/render/aovs/2", "duplicate AOV \"depth\" (already at /render/aovs/0)"},
+    {"duplicate_key.json", "/shapes/0/radius", "duplicate key 'radius'"},
+    {"up_parallel_to_view.json", "/camera/up", "not parallel to the view direction"},
+    {"camera_from_equals_to.json", "/camera/to", "differ from 'from'"},
+    {"albedo_above_one.json", "/materials/white/albedo/0", "expected a number in [0, 1], got 1.2"},
+    {"rgb_two_components.json", "/materials/white/albedo", "expected an RGB array of 3 numbers"},
+    {"sun_direction_zero.json", "/lights/0/direction", "expected a non-zero direction"},
+    {"empty_group.json", "/lights/0/group", "expected a non-empty string"},
+    {"shapes_not_array.json", "/shapes", "expected an array, got an object"},
+    {"seed_negative.json", "/render/seed", "got -1"},
+    {"unknown_top_level_key.json", "/lihgts", "did you mean 'lights'?"},
+    {"conductor_eta_zero.json", "/materials/gold/eta/0", "expected a positive number, got 0"},
+    {"top_level_array.json", "/", "expected an object, got an array"},
+    {"empty_file.json", "line 1, column 1", "invalid JSON"},
+};
+// clang-format on
+
+class BadSceneTest : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneTest, IsRejectedWithPathAndReason) {
+  const BadScene& s = GetParam();
+  const std::filesystem::path file = kBadDir / s.file;
+  ASSERT_TRUE(std::filesystem::exists(file)) << file;
+  try {
+    load_scene(file);
+    FAIL() << s.file << " was accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(file.string()), std::string::npos) << what;
+    EXPECT_NE(what.find(s.path), std::string::npos) << "path '" << s.path << "' not in: " << what;
+    EXPECT_NE(what.find(s.message), std::string::npos)
+        << "message '" << s.message << "' not in: " << what;
+    EXPECT_EQ(e.file(), file.string());
+  } catch (const std::exception& e) {
+    FAIL() << s.file << " threw a non-SceneError: " << e.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, BadSceneTest, ::testing::ValuesIn(kBadScenes),
+                         [](const ::testing::TestParamInfo<BadScene>& info) {
+                           std::string name = info.param.file;
+                           name = name.substr(0, name.rfind('.'));
+                           std::replace_if(
+                               name.begin(), name.end(), [](char c) { return !std::isalnum(c); },
+                               '_');
+                           return name;
+                         });
+
+// A file added to bad_scenes/ without an expectation here would test nothing.
+TEST(BadScenes, EveryFileHasAnExpectationAndViceVersa) {
+  std::set<std::string> on_disk, in_table;
+  for (const auto& entry : std::filesystem::directory_iterator(kBadDir)) {
+    on_disk.insert(entry.path().filename().string());
+  }
+  for (const BadScene& s : kBadScenes) {
+    EXPECT_TRUE(in_table.insert(s.file).second) << "listed twice: " << s.file;
+  }
+  for (const std::string& f : on_disk) EXPECT_TRUE(in_table.count(f)) << "no expectation: " << f;
+  for (const std::string& f : in_table) EXPECT_TRUE(on_disk.count(f)) << "missing file: " << f;
+  EXPECT_GE(on_disk.size(), 22u);
+}
+
+}  // namespace
+}  // namespace vesper

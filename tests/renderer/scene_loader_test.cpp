@@ -1,0 +1,405 @@
+// The scene loader on valid input: field values, defaults, meshes from files,
+// transform maths, environment images, the content hash.
+#include <unistd.h>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "renderer/scene/environment_image.h"
+#include "renderer/scene/scene_loader.h"
+
+namespace vesper {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kDataDir(VESPER_TEST_DATA_DIR);
+
+void expect_near(const Vec3d& a, const Vec3d& b, double eps = 1e-12) {
+  EXPECT_NEAR(a.x, b.x, eps);
+  EXPECT_NEAR(a.y, b.y, eps);
+  EXPECT_NEAR(a.z, b.z, eps);
+}
+
+// A minimal valid scene to modify in individual tests.
+json minimal_scene() {
+  return json::parse(R"({
+    "format": "vesper-scene/1",
+    "camera": {"type": "perspective", "from": [0, 0, 4], "to": [0, 0, 0], "up": [0, 1, 0], "fov": 30},
+    "film": {"width": 16, "height": 8},
+    "render": {"spp": 1},
+    "materials": {"m": {"type": "diffuse"}},
+    "shapes": []
+  })");
+}
+
+// A per-test scratch directory, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    path_ = fs::temp_directory_path() /
+            ("vesper_scene_test_" + std::to_string(::getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+TEST(SceneLoader, ValidSceneFields) {
+  const SceneDescription s = load_scene(kDataDir / "valid_scene.json");
+  EXPECT_EQ(s.file, kDataDir / "valid_scene.json");
+  expect_near(s.camera.from, {0, 1, 3.5});
+  expect_near(s.camera.to, {0, 1, 0});
+  EXPECT_EQ(s.camera.fov_degrees, 40);
+  EXPECT_EQ(s.camera.aperture, 0.05);
+  EXPECT_EQ(s.camera.focus_distance, 3);
+  EXPECT_EQ(s.film.width, 320);
+  EXPECT_EQ(s.film.height, 240);
+  EXPECT_EQ(s.film.filter, FilterType::Gaussian);
+  EXPECT_EQ(s.render.spp, 64);
+  EXPECT_EQ(s.render.max_depth, 5);
+  EXPECT_EQ(s.render.seed, 7u);
+  EXPECT_EQ(s.render.aovs, (std::vector<Aov>{Aov::Normal, Aov::Albedo}));
+
+  // Materials come in name order; shapes refer to them by index.
+  ASSERT_EQ(s.material_names, (std::vector<std::string>{"copper", "glass", "gold", "green",
+                                                        "plastic", "red", "white"}));
+  const auto& copper = std::get<ConductorMaterialDesc>(s.materials[0]);
+  EXPECT_EQ(copper.eta, Rgb(0.2f, 1.1f, 1.2f));
+  EXPECT_EQ(std::get<DielectricMaterialDesc>(s.materials[1]).ior, 1.33);
+  EXPECT_EQ(std::get<DielectricMaterialDesc>(s.materials[1]).roughness, 0);
+  EXPECT_EQ(std::get<ConductorMaterialDesc>(s.materials[2]).roughness, 0.3);
+  EXPECT_EQ(std::get<ConductorMaterialDesc>(s.materials[2]).k, ConductorMaterialDesc{}.k);
+  EXPECT_EQ(std::get<DiffuseMaterialDesc>(s.materials[3]).albedo, Rgb(0.8f));  // default
+  const auto& plastic = std::get<PrincipledMaterialDesc>(s.materials[4]);
+  EXPECT_EQ(plastic.base_color, Rgb(0.1f, 0.2f, 0.9f));
+  EXPECT_EQ(plastic.metallic, 0.25);
+  EXPECT_EQ(plastic.roughness, 1);
+
+  ASSERT_EQ(s.shapes.size(), 7u);
+  EXPECT_EQ(s.material_names[s.shapes[0].material], "white");
+  EXPECT_EQ(s.material_names[s.shapes[1].material], "red");
+  const auto& quad = std::get<QuadShapeDesc>(s.shapes[2].geometry);
+  expect_near(quad.corner, {1, 0, -1});
+  expect_near(quad.edge2, {0, 2, 0});
+  const auto& sphere = std::get<SphereShapeDesc>(s.shapes[3].geometry);
+  EXPECT_EQ(sphere.radius, 0.3);
+  EXPECT_EQ(s.material_names[s.shapes[3].material], "glass");
+  EXPECT_EQ(std::get<MeshShapeDesc>(s.shapes[4].geometry).triangles.size(), 6u);
+  EXPECT_EQ(std::get<MeshShapeDesc>(s.shapes[5].geometry).triangles.size(), 3u);
+
+  ASSERT_EQ(s.lights.size(), 6u);
+  const auto& ql = std::get<QuadLightDesc>(s.lights[0].light);
+  EXPECT_EQ(ql.radiance, Rgb(17, 12, 4));
+  EXPECT_EQ(s.lights[0].group, "ceiling");
+  EXPECT_EQ(std::get<PointLightDesc>(s.lights[1].light).intensity, Rgb(2.f));
+  EXPECT_EQ(s.lights[1].group, "");
+  const auto& spot = std::get<SpotLightDesc>(s.lights[2].light);
+  expect_near(spot.direction, {0, -1, 0});  // normalized
+  EXPECT_EQ(spot.cone_angle, 30);
+  EXPECT_EQ(spot.falloff_start, 20);
+  EXPECT_EQ(s.lights[2].group, "spots");
+  const auto& spot2 = std::get<SpotLightDesc>(s.lights[3].light);
+  expect_near(spot2.direction, {std::sqrt(0.5), -std::sqrt(0.5), 0});
+  EXPECT_EQ(spot2.falloff_start, 45);  // defaults to cone_angle
+  const auto& sun = std::get<SunLightDesc>(s.lights[4].light);
+  expect_near(sun.direction, {0, 0.6, 0.8});
+  EXPECT_EQ(sun.angle, 0.53);  // the real sun's angular diameter by default
+  const auto& env = std::get<EnvironmentLightDesc>(s.lights[5].light);
+  EXPECT_EQ(env.radiance, Rgb(0.1f, 0.2f, 0.3f));
+  EXPECT_FALSE(env.image);
+
+  EXPECT_EQ(s.content_hash.size(), 16u);
+}
+
+TEST(SceneLoader, Defaults) {
+  const SceneDescription s = parse_scene(minimal_scene(), "x/minimal.json");
+  EXPECT_EQ(s.camera.aperture, 0);
+  EXPECT_DOUBLE_EQ(s.camera.focus_distance, 4);  // |to - from|
+  EXPECT_EQ(s.film.filter, FilterType::Box);
+  EXPECT_EQ(s.render.max_depth, 8);
+  EXPECT_EQ(s.render.seed, 0u);
+  EXPECT_TRUE(s.render.aovs.empty());
+  EXPECT_TRUE(s.shapes.empty());
+  EXPECT_TRUE(s.lights.empty());  // a scene without lights is allowed
+}
+
+TEST(SceneLoader, ErrorMessageFormat) {
+  json doc = minimal_scene();
+  doc["shapes"] =
+      json::parse(R"([{"type": "sphere", "center": [0,0,0], "radius": -1, "material": "m"}])");
+  try {
+    parse_scene(doc, "scenes/x.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_STREQ(e.what(), "scenes/x.json: /shapes/0/radius: expected a positive number, got -1");
+    EXPECT_EQ(e.json_path(), "/shapes/0/radius");
+    EXPECT_EQ(e.message(), "expected a positive number, got -1");
+  }
+}
+
+// load_scene stops 1e999 at parse time; a document built in code can still hold inf/NaN.
+TEST(SceneLoader, NonFiniteNumbersInADocumentAreRejected) {
+  for (double bad : {std::numeric_limits<double>::infinity(), std::nan("")}) {
+    json doc = minimal_scene();
+    doc["shapes"] = json::array(
+        {{{"type", "sphere"}, {"center", {0, bad, 0}}, {"radius", 1}, {"material", "m"}}});
+    try {
+      parse_scene(doc, "s.json");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.json_path(), "/shapes/0/center/1");
+      EXPECT_NE(e.message().find("expected a finite number"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SceneLoader, MissingSceneFile) {
+  try {
+    load_scene(kDataDir / "no_such_scene.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_scene.json"), std::string::npos);
+  }
+}
+
+TEST(SceneLoader, MaterialNamesAreEscapedInPaths) {
+  json doc = minimal_scene();
+  doc["materials"]["a/b"] = json::parse(R"({"type": "diffuse", "albedo": [2, 0, 0]})");
+  try {
+    parse_scene(doc, "s.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.json_path(), "/materials/a~1b/albedo/0");
+  }
+}
+
+TEST(SceneLoader, ZeroAreaQuadsAndDegenerateTrianglesAreAccepted) {
+  json doc = minimal_scene();
+  doc["shapes"] = json::parse(R"([
+    {"type": "quad", "corner": [0,0,0], "edge1": [1,0,0], "edge2": [2,0,0], "material": "m"},
+    {"type": "mesh", "positions": [0,0,0, 1,1,1, 2,2,2], "indices": [0,1,2, 0,0,0], "material": "m"}])");
+  doc["lights"] = json::parse(
+      R"([{"type": "quad", "corner": [0,1,0], "edge1": [0,0,0], "edge2": [1,0,0], "radiance": [1,1,1]}])");
+  const SceneDescription s = parse_scene(doc, "s.json");
+  EXPECT_EQ(std::get<MeshShapeDesc>(s.shapes[1].geometry).triangles.size(), 2u);
+  EXPECT_EQ(s.lights.size(), 1u);
+}
+
+TEST(MeshLoader, PlyWithQuadIsTriangulated) {
+  const SceneDescription s = load_scene(kDataDir / "valid_scene.json");
+  const auto& mesh = std::get<MeshShapeDesc>(s.shapes[4].geometry);
+  EXPECT_EQ(mesh.positions.size(), 5u);
+  ASSERT_EQ(mesh.triangles.size(), 6u);
+  EXPECT_EQ(mesh.source, (kDataDir / "meshes/pyramid.ply").string());
+  // Transform: uniform scale 0.5, then translate (0.2, 0, -0.5); the apex (0.5, 1, 0.5) lands at:
+  bool found_apex = false;
+  for (const Vec3d& p : mesh.positions) {
+    if (std::abs(p.x - 0.45) < 1e-6 && std::abs(p.y - 0.5) < 1e-6 && std::abs(p.z + 0.25) < 1e-6) {
+      found_apex = true;
+    }
+  }
+  EXPECT_TRUE(found_apex);
+  for (const auto& t : mesh.triangles) {
+    for (uint32_t i : t) EXPECT_LT(i, mesh.positions.size());
+  }
+}
+
+TEST(MeshLoader, ObjKeepsDegenerateTriangle) {
+  const SceneDescription s = load_scene(kDataDir / "valid_scene.json");
+  const auto& mesh = std::get<MeshShapeDesc>(s.shapes[5].geometry);
+  ASSERT_EQ(mesh.triangles.size(), 3u);
+  double total_area = 0;
+  int zero_area = 0;
+  for (const auto& t : mesh.triangles) {
+    const Vec3d& a = mesh.positions[t[0]];
+    const double area = 0.5 * length(cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a));
+    total_area += area;
+    zero_area += area == 0;
+  }
+  EXPECT_DOUBLE_EQ(total_area, 1.0);  // the unit quad
+  EXPECT_EQ(zero_area, 1);
+}
+
+// scale, then rotate, then translate.
+TEST(Transform, TrsOrder) {
+  json doc = minimal_scene();
+  doc["shapes"] = json::parse(R"([{"type": "mesh", "material": "m",
+    "positions": [1,0,0, 0,1,0, 0,0,1], "indices": [0,1,2],
+    "transform": {"translate": [1,2,3], "rotate": {"axis": [0,0,2], "angle": 90}, "scale": [2,1,1]}}])");
+  const SceneDescription s = parse_scene(doc, "s.json");
+  const auto& mesh = std::get<MeshShapeDesc>(s.shapes[0].geometry);
+  expect_near(mesh.positions[0], {1, 4, 3});  // (1,0,0) -> (2,0,0) -> (0,2,0) -> (1,4,3)
+  expect_near(mesh.positions[1], {0, 2, 3});  // (0,1,0) -> (0,1,0) -> (-1,0,0) -> (0,2,3)
+  expect_near(mesh.positions[2], {1, 2, 4});  // (0,0,1) unchanged by scale and rotation
+}
+
+TEST(Transform, RotationIsRightHanded) {
+  json doc = minimal_scene();
+  doc["shapes"] = json::parse(R"([{"type": "mesh", "material": "m",
+    "positions": [1,0,0, 0,1,0, 0,0,1], "indices": [0,1,2],
+    "transform": {"rotate": {"axis": [0,1,0], "angle": 90}, "scale": 3}}])");
+  const SceneDescription s = parse_scene(doc, "s.json");
+  const auto& mesh = std::get<MeshShapeDesc>(s.shapes[0].geometry);
+  expect_near(mesh.positions[0], {0, 0, -3});  // +X turns toward -Z about +Y
+  expect_near(mesh.positions[1], {0, 3, 0});
+  expect_near(mesh.positions[2], {3, 0, 0});  // +Z turns toward +X
+}
+
+TEST(Transform, MatrixIsRowMajor) {
+  const SceneDescription s = load_scene(kDataDir / "valid_scene.json");
+  const auto& mesh = std::get<MeshShapeDesc>(s.shapes[6].geometry);
+  expect_near(mesh.positions[0], {5, 6, 7});
+  expect_near(mesh.positions[1], {6, 6, 7});
+  expect_near(mesh.positions[2], {5, 8, 7});
+  EXPECT_EQ(mesh.source, "inline mesh at /shapes/6");
+}
+
+TEST(ContentHash, IgnoresFormattingButNotContent) {
+  TempDir dir;
+  const json doc = minimal_scene();
+  write_text(dir.path() / "a.json", doc.dump(2));
+  write_text(dir.path() / "b.json", doc.dump());
+  const std::string ha = load_scene(dir.path() / "a.json").content_hash;
+  EXPECT_EQ(ha, load_scene(dir.path() / "b.json").content_hash);
+  EXPECT_EQ(ha, parse_scene(doc, dir.path() / "c.json").content_hash);
+  json changed = doc;
+  changed["render"]["spp"] = 2;
+  EXPECT_NE(ha, parse_scene(changed, dir.path() / "c.json").content_hash);
+}
+
+TEST(ContentHash, CoversReferencedFiles) {
+  TempDir dir;
+  json doc = minimal_scene();
+  doc["shapes"] = json::parse(R"([{"type": "mesh", "file": "m.obj", "material": "m"}])");
+  write_text(dir.path() / "s.json", doc.dump());
+  write_text(dir.path() / "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string h1 = load_scene(dir.path() / "s.json").content_hash;
+  write_text(dir.path() / "m.obj", "v 0 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_NE(h1, load_scene(dir.path() / "s.json").content_hash);
+}
+
+TEST(Environment, LatLongConvention) {
+  auto near = [](const Vec3& a, const Vec3& b) {
+    return std::abs(a.x - b.x) < 1e-6f && std::abs(a.y - b.y) < 1e-6f &&
+           std::abs(a.z - b.z) < 1e-6f;
+  };
+  EXPECT_TRUE(near(env_latlong_direction(0.3f, 0.f), {0, 1, 0}));  // top row looks up
+  EXPECT_TRUE(near(env_latlong_direction(0.f, 0.5f), {0, 0, -1}));
+  EXPECT_TRUE(near(env_latlong_direction(0.25f, 0.5f), {1, 0, 0}));
+  EXPECT_TRUE(near(env_latlong_direction(0.5f, 0.5f), {0, 0, 1}));
+  EXPECT_TRUE(near(env_latlong_direction(0.75f, 0.5f), {-1, 0, 0}));
+  for (float u : {0.05f, 0.3f, 0.6f, 0.95f}) {
+    for (float v : {0.1f, 0.5f, 0.8f}) {
+      const Vec2 uv = env_latlong_uv(env_latlong_direction(u, v));
+      EXPECT_NEAR(uv.x, u, 1e-5f);
+      EXPECT_NEAR(uv.y, v, 1e-5f);
+    }
+  }
+}
+
+// Writes a width x height image with `channels` channels; value(x, y, c) gives pixels.
+template <typename F>
+void write_image(const fs::path& p, int width, int height, int channels, F value,
+                 OIIO::TypeDesc format = OIIO::TypeDesc::FLOAT) {
+  std::vector<float> data(size_t(width * height * channels));
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      for (int c = 0; c < channels; ++c)
+        data[size_t((y * width + x) * channels + c)] = value(x, y, c);
+    }
+  }
+  auto out = OIIO::ImageOutput::create(p.string());
+  ASSERT_TRUE(out);
+  ASSERT_TRUE(out->open(p.string(), OIIO::ImageSpec(width, height, channels, format)));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, data.data()));
+  out->close();
+}
+
+json env_scene(const std::string& file) {
+  json doc = minimal_scene();
+  doc["lights"] = json::array({{{"type", "environment"},
+                                {"file", file},
+                                {"scale", 2.5},
+                                {"rotation", -30},
+                                {"group", "sky"}}});
+  return doc;
+}
+
+TEST(Environment, ReadsExr) {
+  TempDir dir;
+  write_image(dir.path() / "sky.exr", 8, 4, 4,
+              [](int x, int y, int c) { return c == 3 ? 1.f : float(x + 10 * y + 100 * c); });
+  write_text(dir.path() / "s.json", env_scene("sky.exr").dump());
+  const SceneDescription s = load_scene(dir.path() / "s.json");
+  const auto& env = std::get<EnvironmentLightDesc>(s.lights[0].light);
+  ASSERT_TRUE(env.image);
+  EXPECT_EQ(env.image->width, 8);
+  EXPECT_EQ(env.image->height, 4);
+  EXPECT_EQ(env.image->pixels[size_t(2 * 8 + 3)], Rgb(23, 123, 223));
+  EXPECT_EQ(env.scale, 2.5);
+  EXPECT_EQ(env.rotation, -30);
+  EXPECT_EQ(env.file, (dir.path() / "sky.exr").string());
+  EXPECT_EQ(s.lights[0].group, "sky");
+}
+
+TEST(Environment, GreyImageIsReplicated) {
+  TempDir dir;
+  write_image(dir.path() / "grey.exr", 4, 2, 1, [](int x, int, int) { return float(x); });
+  const SceneDescription s = parse_scene(env_scene("grey.exr"), dir.path() / "s.json");
+  const auto& env = std::get<EnvironmentLightDesc>(s.lights[0].light);
+  EXPECT_EQ(env.image->pixels[3], Rgb(3.f));
+}
+
+TEST(Environment, EightBitImageIsLinearized) {
+  TempDir dir;
+  write_image(
+      dir.path() / "sky.png", 2, 1, 3, [](int, int, int) { return 0.5f; }, OIIO::TypeDesc::UINT8);
+  const SceneDescription s = parse_scene(env_scene("sky.png"), dir.path() / "s.json");
+  const auto& env = std::get<EnvironmentLightDesc>(s.lights[0].light);
+  const float expected = std::pow((128.f / 255.f + 0.055f) / 1.055f, 2.4f);  // sRGB decode
+  EXPECT_NEAR(env.image->pixels[0].r, expected, 1e-4f);
+}
+
+TEST(Environment, RejectsNonFiniteAndNegativePixels) {
+  TempDir dir;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  struct Case {
+    const char* name;
+    float bad;
+    const char* expect;
+  };
+  for (const Case& c : {Case{"nan.exr", nan, "NaN at pixel (3, 1) channel G"},
+                        Case{"inf.exr", inf, "Inf at pixel (3, 1) channel G"},
+                        Case{"neg.exr", -0.5f, "negative value -0.5"}}) {
+    write_image(dir.path() / c.name, 8, 4, 3,
+                [&](int x, int y, int ch) { return x == 3 && y == 1 && ch == 1 ? c.bad : 1.f; });
+    try {
+      parse_scene(env_scene(c.name), dir.path() / "s.json");
+      ADD_FAILURE() << c.name << " accepted";
+    } catch (const SceneError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(e.json_path(), "/lights/0/file");
+      EXPECT_NE(what.find(c.expect), std::string::npos) << what;
+      EXPECT_NE(what.find(c.name), std::string::npos) << what;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vesper
