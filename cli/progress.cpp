@@ -7,14 +7,19 @@
 namespace vesper::cli {
 
 Progress::Progress(std::string label)
-    : label_(std::move(label)), tty_(::isatty(STDERR_FILENO) != 0), start_(std::chrono::steady_clock::now()) {}
+    : label_(std::move(label)),
+      tty_(::isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()) {}
 
 namespace {
 std::string format_seconds(double s) {
   char buf[32];
-  if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
-  else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(s) % 60);
-  else std::snprintf(buf, sizeof buf, "%.1fs", s);
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
+  else if (s >= 60)
+    std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(s) % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%.1fs", s);
   return buf;
 }
 }  // namespace
@@ -33,8 +38,8 @@ void Progress::update(size_t done, size_t total) {
     const int filled = int(frac * kWidth);
     std::string bar(size_t(filled), '#');
     bar.resize(kWidth, '-');
-    std::fprintf(stderr, "\r%s [%s] %5.1f%%  elapsed %s  eta %s   ", label_.c_str(), bar.c_str(), 100 * frac,
-                 format_seconds(elapsed).c_str(), format_seconds(eta).c_str());
+    std::fprintf(stderr, "\r%s [%s] %5.1f%%  elapsed %s  eta %s   ", label_.c_str(), bar.c_str(),
+                 100 * frac, format_seconds(elapsed).c_str(), format_seconds(eta).c_str());
     std::fflush(stderr);
   } else {
     const int decile = int(frac * 10);

@@ -19,10 +19,15 @@ std::vector<Aov> parse_aovs(const std::string& list) {
     const size_t end = std::min(list.find(',', start), list.size());
     const std::string name = list.substr(start, end - start);
     Aov a;
-    if (name == "albedo") a = Aov::Albedo;
-    else if (name == "normal") a = Aov::Normal;
-    else if (name == "depth") a = Aov::Depth;
-    else throw std::invalid_argument("--aov: unknown AOV '" + name + "' (expected albedo, normal, depth)");
+    if (name == "albedo")
+      a = Aov::Albedo;
+    else if (name == "normal")
+      a = Aov::Normal;
+    else if (name == "depth")
+      a = Aov::Depth;
+    else
+      throw std::invalid_argument("--aov: unknown AOV '" + name +
+                                  "' (expected albedo, normal, depth)");
     if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
     start = end + 1;
   }
@@ -65,9 +70,9 @@ int run_render(const RenderCommandOptions& o) {
 
   const Scene scene = build_scene(desc);
   if (!o.quiet)
-    spdlog::info("{}: {}x{}, {} spp, {} primitives, {} lights", o.scene, desc.film.width, desc.film.height,
-                 ro.sample_end.value_or(spp) - ro.sample_begin, scene.accel->primitive_count(),
-                 scene.lights.size());
+    spdlog::info("{}: {}x{}, {} spp, {} primitives, {} lights", o.scene, desc.film.width,
+                 desc.film.height, ro.sample_end.value_or(spp) - ro.sample_begin,
+                 scene.accel->primitive_count(), scene.lights.size());
   Progress progress("render");
   if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
   RenderResult result = render(scene, ro);
@@ -83,7 +88,8 @@ int run_render(const RenderCommandOptions& o) {
   if (result.stats.nonfinite_samples > 0)
     spdlog::warn("{} non-finite samples were caught and dropped", result.stats.nonfinite_samples);
   if (!o.quiet)
-    spdlog::info("wrote {} ({:.2f} s, {:.1f} Mrays/s)", out_path.string(), result.stats.seconds, mrays);
+    spdlog::info("wrote {} ({:.2f} s, {:.1f} Mrays/s)", out_path.string(), result.stats.seconds,
+                 mrays);
   std::printf("%s\n", out_path.string().c_str());
   return 0;
 }

@@ -67,16 +67,17 @@ Accel::Accel(std::vector<AccelQuad> quads, std::vector<AccelSphere> spheres,
     const AccelQuad& q = im.quads[i];
     if (!(length_squared(cross(q.edge1, q.edge2)) > 0.f)) continue;  // zero area: invisible
     RTCGeometry g = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_QUAD);
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
-    const Vec3 p[4] = {q.corner, q.corner + q.edge1, q.corner + q.edge1 + q.edge2, q.corner + q.edge2};
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
+    const Vec3 p[4] = {q.corner, q.corner + q.edge1, q.corner + q.edge1 + q.edge2,
+                       q.corner + q.edge2};
     for (int k = 0; k < 4; ++k) {
       v[3 * k] = p[k].x;
       v[3 * k + 1] = p[k].y;
       v[3 * k + 2] = p[k].z;
     }
-    auto* idx = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
     for (unsigned k = 0; k < 4; ++k) idx[k] = k;
     im.attach(g, {GeomKind::Quad, i});
     ++im.primitives;
@@ -84,8 +85,8 @@ Accel::Accel(std::vector<AccelQuad> quads, std::vector<AccelSphere> spheres,
   for (uint32_t i = 0; i < im.spheres.size(); ++i) {
     const AccelSphere& s = im.spheres[i];
     RTCGeometry g = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
     v[0] = s.center.x;
     v[1] = s.center.y;
     v[2] = s.center.z;
@@ -97,13 +98,14 @@ Accel::Accel(std::vector<AccelQuad> quads, std::vector<AccelSphere> spheres,
     AccelMesh& m = im.meshes[i];
     // Degenerate triangles can never be hit meaningfully and have no normal.
     std::erase_if(m.triangles, [&](const std::array<uint32_t, 3>& t) {
-      const Vec3 c = cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+      const Vec3 c =
+          cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
       return !(length_squared(c) > 0.f) || !is_finite(c);
     });
     if (m.triangles.empty()) continue;
     RTCGeometry g = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                               sizeof(Vec3), m.positions.size());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(),
+                               0, sizeof(Vec3), m.positions.size());
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
                                3 * sizeof(uint32_t), m.triangles.size());
     im.attach(g, {GeomKind::Mesh, i});

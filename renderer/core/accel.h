@@ -12,8 +12,8 @@
 namespace vesper {
 
 struct SurfaceHit {
-  Vec3 p;          // hit point, refined (on the sphere, from barycentrics)
-  Vec3 n;          // unit geometric normal: cross(edge1, edge2), triangle winding, sphere outward
+  Vec3 p;  // hit point, refined (on the sphere, from barycentrics)
+  Vec3 n;  // unit geometric normal: cross(edge1, edge2), triangle winding, sphere outward
   float t = 0;
   uint32_t material = 0;
   int32_t light = -1;  // index into Scene::lights when the surface is an emitter
@@ -38,7 +38,8 @@ struct AccelMesh {
 
 class Accel {
  public:
-  Accel(std::vector<AccelQuad> quads, std::vector<AccelSphere> spheres, std::vector<AccelMesh> meshes);
+  Accel(std::vector<AccelQuad> quads, std::vector<AccelSphere> spheres,
+        std::vector<AccelMesh> meshes);
   ~Accel();
   Accel(const Accel&) = delete;
   Accel& operator=(const Accel&) = delete;

@@ -25,7 +25,8 @@ Rgb escaped_radiance(const Scene& scene, const Vec3& dir, bool count_fully, floa
       if (!count_fully) light_pdf = sun->pdf(dir);
     }
     if (le.is_black()) continue;
-    const float w = count_fully ? 1.f : power_heuristic(bsdf_pdf, scene.light_sampler.pmf(li) * light_pdf);
+    const float w =
+        count_fully ? 1.f : power_heuristic(bsdf_pdf, scene.light_sampler.pmf(li) * light_pdf);
     sum += le * w;
   }
   return sum;
@@ -46,7 +47,8 @@ PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sample
     const std::optional<SurfaceHit> hit = scene.accel->intersect(ray);
     ++result.rays;
     if (!hit) {
-      result.radiance += throughput * escaped_radiance(scene, ray.dir, count_emission_fully, prev_bsdf_pdf);
+      result.radiance +=
+          throughput * escaped_radiance(scene, ray.dir, count_emission_fully, prev_bsdf_pdf);
       break;
     }
     if (depth == 0) {
@@ -64,7 +66,8 @@ PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sample
       if (!le.is_black()) {
         float w = 1.f;
         if (!count_emission_fully) {
-          const float light_pdf = scene.light_sampler.pmf(size_t(hit->light)) * ql.pdf(ray.dir, hit->t);
+          const float light_pdf =
+              scene.light_sampler.pmf(size_t(hit->light)) * ql.pdf(ray.dir, hit->t);
           w = power_heuristic(prev_bsdf_pdf, light_pdf);
         }
         result.radiance += throughput * le * w;
@@ -98,11 +101,13 @@ PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sample
             const Vec3 n_off = dot(ls->wi, hit->n) >= 0.f ? hit->n : -hit->n;
             const Vec3 origin = offset_ray_origin(hit->p, n_off);
             // Stop short of the light's surface so it does not occlude itself.
-            const float tmax = std::isinf(ls->distance) ? ls->distance : ls->distance * (1.f - 1e-4f);
+            const float tmax =
+                std::isinf(ls->distance) ? ls->distance : ls->distance * (1.f - 1e-4f);
             ++result.rays;
             if (!scene.accel->occluded(origin, ls->wi, tmax)) {
               const float light_pdf = pmf * ls->pdf;
-              const float w = ls->is_delta ? 1.f : power_heuristic(light_pdf, bsdf_pdf(bsdf, wo, wi));
+              const float w =
+                  ls->is_delta ? 1.f : power_heuristic(light_pdf, bsdf_pdf(bsdf, wo, wi));
               result.radiance += throughput * f * ls->radiance * (std::abs(wi.z) * w / light_pdf);
             }
           }

@@ -24,9 +24,9 @@ struct EnvironmentMap {
 };
 
 struct EnvironmentLight {
-  Rgb constant;                          // used when map is null
+  Rgb constant;  // used when map is null
   std::shared_ptr<const EnvironmentMap> map;
-  float cos_rot = 1.f, sin_rot = 0.f;    // rotation about +Y
+  float cos_rot = 1.f, sin_rot = 0.f;  // rotation about +Y
 
   static Vec3 uv_to_local_dir(Vec2 uv) {
     const float theta = uv.y * kPi, phi = 2.f * kPi * uv.x;
@@ -34,10 +34,12 @@ struct EnvironmentLight {
     return {st * std::sin(phi), std::cos(theta), -st * std::cos(phi)};
   }
   static Vec2 local_dir_to_uv(const Vec3& d) {
-    const float theta = std::acos(clamp(d.y, -1.f, 1.f));
+    // atan2 rather than acos(y): acos loses all precision near the poles.
+    const float theta = std::atan2(std::sqrt(d.x * d.x + d.z * d.z), d.y);
     float phi = std::atan2(d.x, -d.z);
     if (phi < 0.f) phi += 2.f * kPi;
-    return {clamp(phi * kInv2Pi, 0.f, kOneMinusEpsilon), clamp(theta * kInvPi, 0.f, kOneMinusEpsilon)};
+    return {clamp(phi * kInv2Pi, 0.f, kOneMinusEpsilon),
+            clamp(theta * kInvPi, 0.f, kOneMinusEpsilon)};
   }
   Vec3 to_world(const Vec3& d) const {
     return {cos_rot * d.x + sin_rot * d.z, d.y, -sin_rot * d.x + cos_rot * d.z};
@@ -69,8 +71,9 @@ struct EnvironmentLight {
   }
   float pdf(const Vec3& wi) const {
     if (!map) return kInv4Pi;
-    const Vec2 uv = local_dir_to_uv(to_local(wi));
-    const float sin_theta = std::sin(uv.y * kPi);
+    const Vec3 d = to_local(wi);
+    const Vec2 uv = local_dir_to_uv(d);
+    const float sin_theta = std::sqrt(d.x * d.x + d.z * d.z);
     if (sin_theta <= 0.f) return 0.f;
     return map->distribution.pdf(uv) / (2.f * kPi * kPi * sin_theta);
   }
@@ -80,7 +83,8 @@ struct EnvironmentLight {
       double sum = 0;
       for (int y = 0; y < map->height; ++y) {
         const double st = std::sin((y + 0.5) / map->height * kPi);
-        for (int x = 0; x < map->width; ++x) sum += st * map->pixels[size_t(y) * map->width + x].average();
+        for (int x = 0; x < map->width; ++x)
+          sum += st * map->pixels[size_t(y) * map->width + x].average();
       }
       avg = float(sum / (double(map->width) * map->height) * kPi / 2.0);
     }
@@ -104,7 +108,6 @@ struct EnvironmentLight {
     m->distribution = Distribution2D(w, width, height);
     return m;
   }
-
 };
 
 }  // namespace vesper

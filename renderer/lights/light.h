@@ -20,9 +20,12 @@ inline std::optional<LightSample> sample_light(const Light& light, const Vec3& p
   return std::visit(
       [&](const auto& l) -> std::optional<LightSample> {
         using T = std::decay_t<decltype(l)>;
-        if constexpr (std::is_same_v<T, QuadLight>) return l.sample(p, u);
-        else if constexpr (std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>) return l.sample(p);
-        else return l.sample(u);
+        if constexpr (std::is_same_v<T, QuadLight>)
+          return l.sample(p, u);
+        else if constexpr (std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>)
+          return l.sample(p);
+        else
+          return l.sample(u);
       },
       light);
 }
@@ -33,7 +36,8 @@ inline float light_power(const Light& light, float scene_radius) {
         using T = std::decay_t<decltype(l)>;
         if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, EnvironmentLight>)
           return l.power(scene_radius);
-        else return l.power();
+        else
+          return l.power();
       },
       light);
 }

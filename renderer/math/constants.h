@@ -12,7 +12,9 @@ inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 constexpr float radians(float deg) { return deg * (kPi / 180.f); }
 constexpr float sqr(float x) { return x * x; }
 template <typename T>
-constexpr T clamp(T v, T lo, T hi) { return v < lo ? lo : (v > hi ? hi : v); }
+constexpr T clamp(T v, T lo, T hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
 inline float safe_sqrt(float x) { return x > 0.f ? __builtin_sqrtf(x) : 0.f; }
 // Power heuristic with beta = 2 (Veach).
 inline float power_heuristic(float pdf_a, float pdf_b) {

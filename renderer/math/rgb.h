@@ -14,17 +14,39 @@ struct Rgb {
 
   constexpr float operator[](int i) const { return i == 0 ? r : (i == 1 ? g : b); }
   constexpr float& operator[](int i) { return i == 0 ? r : (i == 1 ? g : b); }
-  constexpr Rgb& operator+=(const Rgb& o) { r += o.r; g += o.g; b += o.b; return *this; }
-  constexpr Rgb& operator-=(const Rgb& o) { r -= o.r; g -= o.g; b -= o.b; return *this; }
-  constexpr Rgb& operator*=(const Rgb& o) { r *= o.r; g *= o.g; b *= o.b; return *this; }
-  constexpr Rgb& operator*=(float s) { r *= s; g *= s; b *= s; return *this; }
+  constexpr Rgb& operator+=(const Rgb& o) {
+    r += o.r;
+    g += o.g;
+    b += o.b;
+    return *this;
+  }
+  constexpr Rgb& operator-=(const Rgb& o) {
+    r -= o.r;
+    g -= o.g;
+    b -= o.b;
+    return *this;
+  }
+  constexpr Rgb& operator*=(const Rgb& o) {
+    r *= o.r;
+    g *= o.g;
+    b *= o.b;
+    return *this;
+  }
+  constexpr Rgb& operator*=(float s) {
+    r *= s;
+    g *= s;
+    b *= s;
+    return *this;
+  }
   friend constexpr Rgb operator+(Rgb a, const Rgb& o) { return a += o; }
   friend constexpr Rgb operator-(Rgb a, const Rgb& o) { return a -= o; }
   friend constexpr Rgb operator*(Rgb a, const Rgb& o) { return a *= o; }
   friend constexpr Rgb operator*(Rgb a, float s) { return a *= s; }
   friend constexpr Rgb operator*(float s, Rgb a) { return a *= s; }
   friend constexpr Rgb operator/(Rgb a, float s) { return a *= (1.f / s); }
-  friend constexpr Rgb operator/(const Rgb& a, const Rgb& o) { return {a.r / o.r, a.g / o.g, a.b / o.b}; }
+  friend constexpr Rgb operator/(const Rgb& a, const Rgb& o) {
+    return {a.r / o.r, a.g / o.g, a.b / o.b};
+  }
   friend constexpr bool operator==(const Rgb&, const Rgb&) = default;
 
   constexpr bool is_black() const { return r == 0 && g == 0 && b == 0; }

@@ -18,9 +18,24 @@ struct Vec3T {
   constexpr T operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
   constexpr T& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
   constexpr Vec3T operator-() const { return {-x, -y, -z}; }
-  constexpr Vec3T& operator+=(const Vec3T& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  constexpr Vec3T& operator-=(const Vec3T& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  constexpr Vec3T& operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
+  constexpr Vec3T& operator+=(const Vec3T& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  constexpr Vec3T& operator-=(const Vec3T& o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  constexpr Vec3T& operator*=(T s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
   friend constexpr Vec3T operator+(Vec3T a, const Vec3T& b) { return a += b; }
   friend constexpr Vec3T operator-(Vec3T a, const Vec3T& b) { return a -= b; }
   friend constexpr Vec3T operator*(Vec3T a, T s) { return a *= s; }
@@ -37,19 +52,29 @@ struct Vec2 {
 };
 
 template <typename T>
-constexpr T dot(const Vec3T<T>& a, const Vec3T<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr T dot(const Vec3T<T>& a, const Vec3T<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 template <typename T>
 constexpr Vec3T<T> cross(const Vec3T<T>& a, const Vec3T<T>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 template <typename T>
-constexpr Vec3T<T> mul(const Vec3T<T>& a, const Vec3T<T>& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+constexpr Vec3T<T> mul(const Vec3T<T>& a, const Vec3T<T>& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
 template <typename T>
-inline T length_squared(const Vec3T<T>& a) { return dot(a, a); }
+inline T length_squared(const Vec3T<T>& a) {
+  return dot(a, a);
+}
 template <typename T>
-inline T length(const Vec3T<T>& a) { return std::sqrt(dot(a, a)); }
+inline T length(const Vec3T<T>& a) {
+  return std::sqrt(dot(a, a));
+}
 template <typename T>
-inline Vec3T<T> normalize(const Vec3T<T>& a) { return a / length(a); }
+inline Vec3T<T> normalize(const Vec3T<T>& a) {
+  return a / length(a);
+}
 template <typename T>
 inline T max_abs_component(const Vec3T<T>& a) {
   return std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)});
@@ -59,7 +84,9 @@ inline bool is_finite(const Vec3T<T>& a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
 template <typename T>
-inline Vec3T<T> abs(const Vec3T<T>& a) { return {std::abs(a.x), std::abs(a.y), std::abs(a.z)}; }
+inline Vec3T<T> abs(const Vec3T<T>& a) {
+  return {std::abs(a.x), std::abs(a.y), std::abs(a.z)};
+}
 template <typename T>
 inline Vec3T<T> min(const Vec3T<T>& a, const Vec3T<T>& b) {
   return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};

@@ -10,7 +10,8 @@ namespace vesper {
 void write_exr(const LayeredImage& image, const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
-  OIIO::ImageSpec spec(image.width, image.height, int(image.channel_count()), OIIO::TypeDesc::FLOAT);
+  OIIO::ImageSpec spec(image.width, image.height, int(image.channel_count()),
+                       OIIO::TypeDesc::FLOAT);
   spec.channelnames = image.channels;
   spec.alpha_channel = image.channel_index("A");
   spec.z_channel = -1;

@@ -86,8 +86,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
           Sampler sampler(seed, pixel_index, uint64_t(s));
           const Vec2 offset = sample_pixel_filter(scene.film.filter, sampler.next2());
           const Vec2 u_lens = sampler.next2();
-          const Ray ray =
-              scene.camera.generate_ray(float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y, u_lens);
+          const Ray ray = scene.camera.generate_ray(float(x) + 0.5f + offset.x,
+                                                    float(y) + 0.5f + offset.y, u_lens);
           const PathResult r = trace_path(scene, ray, sampler, pt);
           rays += r.rays;
           // A non-finite value would poison the whole pixel: drop the sample, count it.
@@ -115,7 +115,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     if (options.on_progress) options.on_progress(done, tiles_total);
   };
 
-  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  const int threads =
+      options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles_total, 1),

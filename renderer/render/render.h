@@ -12,9 +12,9 @@
 namespace vesper {
 
 struct RenderOptions {
-  int threads = 0;                     // 0 = all hardware threads
-  std::optional<int> spp;              // overrides render.spp
-  std::optional<uint64_t> seed;        // overrides render.seed
+  int threads = 0;                       // 0 = all hardware threads
+  std::optional<int> spp;                // overrides render.spp
+  std::optional<uint64_t> seed;          // overrides render.seed
   std::optional<std::vector<Aov>> aovs;  // overrides render.aovs
   // Renders sample indices [sample_begin, sample_end) of the pixel estimate;
   // sample_end defaults to spp. Disjoint ranges merge by sample count.
@@ -27,8 +27,8 @@ struct RenderOptions {
 struct RenderStats {
   double seconds = 0;
   uint64_t camera_samples = 0;
-  uint64_t rays = 0;              // intersection + occlusion queries
-  uint64_t nonfinite_samples = 0; // NaN/Inf path values caught and dropped
+  uint64_t rays = 0;               // intersection + occlusion queries
+  uint64_t nonfinite_samples = 0;  // NaN/Inf path values caught and dropped
 };
 
 struct RenderResult {

@@ -25,7 +25,9 @@ inline Vec3 sample_cosine_hemisphere(Vec2 u) {
   const Vec2 d = sample_uniform_disk_concentric(u);
   return {d.x, d.y, safe_sqrt(1.f - d.x * d.x - d.y * d.y)};
 }
-inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.f ? cos_theta * kInvPi : 0.f; }
+inline float cosine_hemisphere_pdf(float cos_theta) {
+  return cos_theta > 0.f ? cos_theta * kInvPi : 0.f;
+}
 
 inline Vec3 sample_uniform_sphere(Vec2 u) {
   const float z = 1.f - 2.f * u.x;

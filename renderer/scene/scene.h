@@ -27,9 +27,9 @@ struct Scene {
   std::vector<uint32_t> infinite_lights;  // lights a ray that escapes can hit
   LightSampler light_sampler;
   std::unique_ptr<Accel> accel;
-  Vec3d origin;            // world position of render-space (0,0,0)
-  double unit_scale = 1;   // world units per render-space unit
-  float radius = 1;        // bounding radius of the render-space scene around the origin
+  Vec3d origin;           // world position of render-space (0,0,0)
+  double unit_scale = 1;  // world units per render-space unit
+  float radius = 1;       // bounding radius of the render-space scene around the origin
   std::string content_hash;
 };
 

@@ -15,7 +15,8 @@ namespace {
 // Irradiance at p with normal n from a Lambertian polygon of radiance L:
 // E = L/2 * sum_i acos(v_i . v_i+1) * (n . normalize(v_i x v_i+1)), v_i unit
 // vectors toward the vertices in order (Lambert 1760; Arvo 1995).
-double polygon_irradiance(const Vec3d& p, const Vec3d& n, const std::array<Vec3d, 4>& verts, double L) {
+double polygon_irradiance(const Vec3d& p, const Vec3d& n, const std::array<Vec3d, 4>& verts,
+                          double L) {
   double sum = 0;
   for (int i = 0; i < 4; ++i) {
     const Vec3d a = normalize(verts[size_t(i)] - p), b = normalize(verts[size_t((i + 1) % 4)] - p);
@@ -29,15 +30,16 @@ TEST(Analytic, DiffusePlaneUnderQuadLightMatchesFormFactor) {
   constexpr double rho = 0.5, L = 4.0;
   SceneDescription d = empty_scene(24, 24, 8, 1);
   d.film.filter = FilterType::Box;
-  d.camera.from = {0, 3, 0.001};
-  d.camera.to = {0, 0, 0};
+  // The camera sits below the one-sided light, so it never sees the light itself.
+  d.camera.from = {0.3, 0.9, 0.2};
+  d.camera.to = {0.3, 0, 0.2};
   d.camera.up = {0, 0, -1};
-  d.camera.fov_degrees = 50;
+  d.camera.fov_degrees = 80;
   const uint32_t m = add_material(d, "plane", DiffuseMaterialDesc{Rgb(float(rho))});
   add_quad(d, {-5, 0, 5}, {10, 0, 0}, {0, 0, -10}, m);
   // 1x1 light at height 1, facing down: cross(e1, e2) = -y.
   const Vec3d corner{-0.5, 1, -0.5}, e1{1, 0, 0}, e2{0, 0, 1};
-  d.lights.push_back({QuadLightDesc{corner, e1, e2, Rgb(float(L))}, ""});
+  add_light(d, QuadLightDesc{corner, e1, e2, Rgb(float(L))});
   const Scene scene = build_scene(d);
 
   // Expected pixel values: analytic radiance averaged over the pixel footprint
@@ -47,7 +49,8 @@ TEST(Analytic, DiffusePlaneUnderQuadLightMatchesFormFactor) {
     double sum = 0;
     for (int sy = 0; sy < 16; ++sy)
       for (int sx = 0; sx < 16; ++sx) {
-        const Ray r = scene.camera.generate_ray(x + (sx + 0.5f) / 16.f, y + (sy + 0.5f) / 16.f, {0.5f, 0.5f});
+        const Ray r =
+            scene.camera.generate_ray(x + (sx + 0.5f) / 16.f, y + (sy + 0.5f) / 16.f, {0.5f, 0.5f});
         const Vec3d o = Vec3d(r.origin) * scene.unit_scale + scene.origin;
         const Vec3d dir(r.dir);
         const Vec3d p = o + dir * (-o.y / dir.y);
@@ -83,24 +86,29 @@ void expect_no_acne(double scale, Vec3d offset) {
   const uint32_t m = add_material(d, "m", DiffuseMaterialDesc{Rgb(float(rho))});
   add_sphere(d, offset, 1.0 * scale, m);
   const Vec3d sun = normalize(Vec3d(1, 0.2, -0.15));  // mostly from the side
-  d.lights.push_back({SunLightDesc{sun, Rgb(float(E)), 0.0}, ""});
+  add_light(d, SunLightDesc{sun, Rgb(float(E)), 0.0});
   const Scene scene = build_scene(d);
   const RenderResult r = render(scene);
 
   int checked = 0, acne = 0;
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
-      // Analytic value at the 4 pixel corners; skip pixels not fully on the sphere or near the terminator.
+      // Analytic value at the 4 pixel corners; skip pixels not fully on the sphere or near the
+      // terminator.
       double lo = 1e30, hi = -1e30;
       bool inside = true;
       for (int c = 0; c < 4; ++c) {
-        const Ray ray = scene.camera.generate_ray(float(x + (c & 1)), float(y + (c >> 1)), {0.5f, 0.5f});
+        const Ray ray =
+            scene.camera.generate_ray(float(x + (c & 1)), float(y + (c >> 1)), {0.5f, 0.5f});
         const Vec3d o(ray.origin), dir(ray.dir);
         const Vec3d center = (offset - scene.origin) / scene.unit_scale;
         const double rr = scale / scene.unit_scale;
         const Vec3d oc = o - center;
         const double b = dot(oc, dir), cc = dot(oc, oc) - rr * rr, disc = b * b - cc;
-        if (disc <= 0) { inside = false; break; }
+        if (disc <= 0) {
+          inside = false;
+          break;
+        }
         const Vec3d p = o + dir * (-b - std::sqrt(disc));
         const double cosl = dot(normalize(p - center), sun);
         lo = std::min(lo, cosl);

@@ -19,7 +19,8 @@ TEST(Determinism, BitwiseIdenticalForOneAndTwoThreads) {
   const RenderResult a = render(scene, one);
   const RenderResult b = render(scene, two);
   ASSERT_EQ(a.image.pixels.size(), b.image.pixels.size());
-  EXPECT_EQ(0, std::memcmp(a.image.pixels.data(), b.image.pixels.data(), a.image.pixels.size() * sizeof(float)));
+  EXPECT_EQ(0, std::memcmp(a.image.pixels.data(), b.image.pixels.data(),
+                           a.image.pixels.size() * sizeof(float)));
 }
 
 TEST(Determinism, DifferentSeedsGiveDifferentImages) {

@@ -17,7 +17,7 @@ SceneDescription furnace(MaterialDesc material) {
   d.camera.fov_degrees = 30;
   const uint32_t m = add_material(d, "m", std::move(material));
   add_sphere(d, {0, 0, 0}, 1.0, m);
-  d.lights.push_back({EnvironmentLightDesc{}, ""});
+  add_light(d, EnvironmentLightDesc{});
   return d;
 }
 
@@ -28,11 +28,14 @@ void expect_furnace_is_one(const SceneDescription& d) {
   const double crit = sidak_t_critical(kAlpha, int(st.mean.size()), st.batches - 1);
   for (size_t t = 0; t < st.mean.size(); ++t) {
     const double se = std::max(st.se[t], 1e-7);  // background tiles are exactly 1
-    EXPECT_LT(std::abs(st.mean[t] - 1.0) / se, crit) << "tile " << t << " mean " << st.mean[t] << " se " << st.se[t];
+    EXPECT_LT(std::abs(st.mean[t] - 1.0) / se, crit)
+        << "tile " << t << " mean " << st.mean[t] << " se " << st.se[t];
   }
 }
 
-TEST(Furnace, WhiteDiffuseSphereVanishes) { expect_furnace_is_one(furnace(DiffuseMaterialDesc{Rgb(1.f)})); }
+TEST(Furnace, WhiteDiffuseSphereVanishes) {
+  expect_furnace_is_one(furnace(DiffuseMaterialDesc{Rgb(1.f)}));
+}
 
 TEST(Furnace, SmoothGlassSphereVanishes) {
   expect_furnace_is_one(furnace(DielectricMaterialDesc{1.5, 0.0}));

@@ -21,7 +21,8 @@ inline double pixel_luminance(const LayeredImage& img, int x, int y) {
   return 0.2126 * img.at(x, y, 0) + 0.7152 * img.at(x, y, 1) + 0.0722 * img.at(x, y, 2);
 }
 
-inline TileStats tile_stats(const Scene& scene, int batches, int spp, int tile, uint64_t seed0 = 1000) {
+inline TileStats tile_stats(const Scene& scene, int batches, int spp, int tile,
+                            uint64_t seed0 = 1000) {
   const int w = scene.film.width, h = scene.film.height;
   TileStats st;
   st.tiles_x = (w + tile - 1) / tile;

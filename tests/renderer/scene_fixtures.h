@@ -29,6 +29,13 @@ inline void add_quad(SceneDescription& d, Vec3d corner, Vec3d e1, Vec3d e2, uint
   d.shapes.push_back({QuadShapeDesc{corner, e1, e2}, material});
 }
 
+template <typename L>
+inline void add_light(SceneDescription& d, L light, std::string group = "") {
+  LightDesc& l = d.lights.emplace_back();
+  l.light = std::move(light);
+  l.group = std::move(group);
+}
+
 // A Cornell-style box: 2 units wide, quad ceiling light, a sphere and a box-ish quad.
 inline SceneDescription small_cornell(int w, int h, int spp) {
   SceneDescription d = empty_scene(w, h, spp, 6);
@@ -46,7 +53,7 @@ inline SceneDescription small_cornell(int w, int h, int spp) {
   add_quad(d, {1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green);
   add_sphere(d, {-0.4, 0.4, -0.2}, 0.4, metal);
   add_sphere(d, {0.45, 0.3, 0.3}, 0.3, white);
-  d.lights.push_back({QuadLightDesc{{-0.25, 1.98, -0.25}, {0.5, 0, 0}, {0, 0, 0.5}, Rgb(17.f, 12.f, 4.f)}, ""});
+  add_light(d, QuadLightDesc{{-0.25, 1.98, -0.25}, {0.5, 0, 0}, {0, 0, 0.5}, Rgb(17.f, 12.f, 4.f)});
   return d;
 }
 

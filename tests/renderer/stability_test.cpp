@@ -50,7 +50,7 @@ SceneDescription transformed(SceneDescription d, double scale, Vec3d offset) {
 
 SceneDescription base_scene() {
   SceneDescription d = small_cornell(32, 32, 8);
-  d.lights.push_back({PointLightDesc{{0.5, 1.5, 0.5}, Rgb(0.5f)}, ""});
+  add_light(d, PointLightDesc{{0.5, 1.5, 0.5}, Rgb(0.5f)});
   return d;
 }
 
@@ -87,12 +87,13 @@ TEST(Stability, DegenerateGeometryAndExtremeRoughnessStayFinite) {
   d.render.aovs = {Aov::Albedo, Aov::Normal, Aov::Depth};
   // Degenerate triangles: zero area, repeated vertices, collinear, and one good one.
   MeshShapeDesc mesh;
-  mesh.positions = {{0, 1, 0}, {0, 1, 0}, {0.2, 1.2, 0}, {0.4, 1.4, 0}, {0.6, 1.6, 0}, {-0.5, 0.5, 0.5}, {-0.2, 0.5, 0.5}, {-0.3, 0.8, 0.5}};
+  mesh.positions = {{0, 1, 0},     {0, 1, 0},        {0.2, 1.2, 0},    {0.4, 1.4, 0},
+                    {0.6, 1.6, 0}, {-0.5, 0.5, 0.5}, {-0.2, 0.5, 0.5}, {-0.3, 0.8, 0.5}};
   mesh.triangles = {{0, 1, 2}, {2, 2, 2}, {2, 3, 4}, {5, 6, 7}};
   mesh.source = "inline";
   d.shapes.push_back({mesh, 0});
   // Zero-area light.
-  d.lights.push_back({QuadLightDesc{{0, 1.5, 0}, {0, 0, 0}, {0, 0, 0.2}, Rgb(100.f)}, ""});
+  add_light(d, QuadLightDesc{{0, 1.5, 0}, {0, 0, 0}, {0, 0, 0.2}, Rgb(100.f)});
   // Every material at roughness 0 and 1.
   for (double r : {0.0, 1.0}) {
     const uint32_t cond = add_material(d, "c", ConductorMaterialDesc{r, Rgb(0.2f), Rgb(3.f)});
@@ -103,7 +104,7 @@ TEST(Stability, DegenerateGeometryAndExtremeRoughnessStayFinite) {
     add_sphere(d, {x, 1.0, 0.2}, 0.15, diel);
     add_sphere(d, {x, 0.6, 0.4}, 0.15, prin);
   }
-  d.lights.push_back({EnvironmentLightDesc{}, ""});
+  add_light(d, EnvironmentLightDesc{});
   const Scene scene = build_scene(d);
   const RenderResult r = render(scene);
   EXPECT_TRUE(all_finite(r.image));
