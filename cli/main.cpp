@@ -1,11 +1,14 @@
 // The `vesper` executable. CLI11 is a heavy header: it lives in this file only;
 // each subcommand's work is in its own <name>_command.cpp.
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
 
 int main(int argc, char** argv) {
+  // Logs and progress go to stderr; stdout carries only results (paths), for scripts.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("vesper"));
   CLI::App app{"Vesper: an offline render farm and path tracer"};
   app.require_subcommand(1);
   app.set_version_flag("--version", VESPER_VERSION);

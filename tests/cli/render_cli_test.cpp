@@ -1,0 +1,135 @@
+// `vesper render` as a user runs it: real process, real files.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "renderer/output/exr_io.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+class RenderCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("vesper-cli-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  RunResult run(const std::string& args) {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string cmd =
+        std::string(VESPER_BINARY) + " render " + args + " >" + out.string() + " 2>" + err.string();
+    const int status = std::system(cmd.c_str());
+    RunResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+  }
+  fs::path dir_;
+};
+
+const std::string kCornell = std::string(VESPER_SOURCE_DIR) + "/scenes/cornell/scene.json";
+
+TEST_F(RenderCli, RendersTheCornellBoxWithAovsAndMetadata) {
+  const fs::path exr = dir_ / "cornell.exr";
+  const RunResult r = run(kCornell + " -o " + exr.string() +
+                          " --spp 2 --seed 9 --threads 2 --aov albedo,normal,depth -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, exr.string() + "\n");
+  const vesper::LayeredImage img = vesper::read_exr(exr);
+  EXPECT_EQ(img.width, 256);
+  EXPECT_EQ(img.height, 256);
+  for (const char* ch : {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "normal.X",
+                         "normal.Y", "normal.Z", "depth.Z"})
+    EXPECT_GE(img.channel_index(ch), 0) << "missing channel " << ch;
+  EXPECT_EQ(img.channel_count(), 11u);
+  EXPECT_EQ(img.metadata.at("vesper:spp"), "2");
+  EXPECT_EQ(img.metadata.at("vesper:seed"), "9");
+  EXPECT_EQ(img.metadata.at("vesper:nonfinite_samples"), "0");
+  EXPECT_FALSE(img.metadata.at("vesper:scene_hash").empty());
+  for (float v : img.pixels) ASSERT_TRUE(std::isfinite(v));
+  // No temporary file is left next to the output.
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST_F(RenderCli, OiiotoolPullsALayerOutByName) {
+  const fs::path exr = dir_ / "c.exr", albedo = dir_ / "albedo.exr";
+  ASSERT_EQ(run(kCornell + " -o " + exr.string() + " --spp 1 --aov albedo -q").exit_code, 0);
+  const std::string cmd = "oiiotool " + exr.string() +
+                          " --ch albedo.R,albedo.G,albedo.B --chnames R,G,B -o " + albedo.string() +
+                          " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const vesper::LayeredImage img = vesper::read_exr(albedo);
+  EXPECT_EQ(img.channel_count(), 3u);
+}
+
+TEST_F(RenderCli, RejectsABadSceneNamingFileAndPathAndWritesNothing) {
+  const fs::path scene = dir_ / "bad.json", exr = dir_ / "bad.exr";
+  std::string text = slurp(kCornell);
+  const std::string from = "\"radiance\": [17, 12, 4]";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "\"radiance\": [17, -12, 4]");
+  std::ofstream(scene) << text;
+  fs::copy_file(fs::path(kCornell).parent_path() / "cube.obj", dir_ / "cube.obj");
+  const RunResult r = run(scene.string() + " -o " + exr.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(scene.string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/lights/0/radiance"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(exr));
+}
+
+TEST_F(RenderCli, RejectsAnUnknownAovAndAMissingOutputDirectory) {
+  EXPECT_EQ(run(kCornell + " -o " + (dir_ / "x.exr").string() + " --aov albedo,speculr").exit_code,
+            2);
+  const RunResult r = run(kCornell + " -o " + (dir_ / "no/such/dir/x.exr").string() + " --spp 1");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("no/such/dir"), std::string::npos) << r.err;
+}
+
+TEST_F(RenderCli, MissingSceneFileIsAClearError) {
+  const RunResult r = run((dir_ / "nope.json").string() + " -o " + (dir_ / "x.exr").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("nope.json"), std::string::npos) << r.err;
+}
+
+TEST_F(RenderCli, SampleRangesFromTheCommandLineMergeToTheFullRender) {
+  const fs::path a = dir_ / "a.exr", b = dir_ / "b.exr", full = dir_ / "full.exr";
+  ASSERT_EQ(run(kCornell + " -o " + a.string() + " --spp 4 --sample-end 1 -q").exit_code, 0);
+  ASSERT_EQ(run(kCornell + " -o " + b.string() + " --spp 4 --sample-begin 1 -q").exit_code, 0);
+  ASSERT_EQ(run(kCornell + " -o " + full.string() + " --spp 4 -q").exit_code, 0);
+  const auto ia = vesper::read_exr(a), ib = vesper::read_exr(b), ifull = vesper::read_exr(full);
+  ASSERT_EQ(ia.pixels.size(), ifull.pixels.size());
+  double max_rel = 0;
+  for (size_t i = 0; i < ifull.pixels.size(); ++i) {
+    const double merged = (1.0 * ia.pixels[i] + 3.0 * ib.pixels[i]) / 4.0;
+    max_rel = std::max(max_rel, std::abs(merged - ifull.pixels[i]) /
+                                    std::max(1e-3, double(std::abs(ifull.pixels[i]))));
+  }
+  EXPECT_LT(max_rel, 1e-6);
+}
+
+}  // namespace
