@@ -74,6 +74,82 @@ TEST(Analytic, DiffusePlaneUnderQuadLightMatchesFormFactor) {
     }
 }
 
+// A diffuse plane y = 0 seen from above, lit by `light`; each 4x4 tile's mean
+// must match rho/pi * E(x) averaged over its pixels (Sidak-corrected t-test).
+template <typename L, typename Irradiance>
+void expect_plane_matches(const L& light, const Irradiance& irradiance, int max_depth = 1) {
+  constexpr double rho = 0.6;
+  SceneDescription d = empty_scene(24, 24, 8, max_depth);
+  d.film.filter = FilterType::Box;
+  d.camera.from = {0.1, 2.0, 0.2};
+  d.camera.to = {0.1, 0, 0.2};
+  d.camera.up = {0, 0, -1};
+  d.camera.fov_degrees = 70;
+  add_quad(d, {-50, 0, 50}, {100, 0, 0}, {0, 0, -100}, add_material(d, "plane", DiffuseMaterialDesc{Rgb(float(rho))}));
+  add_light(d, light);
+  const Scene scene = build_scene(d);
+  auto expected_pixel = [&](int x, int y) {
+    double sum = 0;
+    for (int sy = 0; sy < 8; ++sy)
+      for (int sx = 0; sx < 8; ++sx) {
+        const Ray r = scene.camera.generate_ray(x + (sx + 0.5f) / 8.f, y + (sy + 0.5f) / 8.f, {0.5f, 0.5f});
+        const Vec3d o = Vec3d(r.origin) * scene.unit_scale + scene.origin, dir(r.dir);
+        sum += rho / M_PI * irradiance(o + dir * (-o.y / dir.y));
+      }
+    return sum / 64.0;
+  };
+  const int tile = 4;
+  const TileStats st = tile_stats(scene, 16, 8, tile);
+  const double crit = sidak_t_critical(0.01, int(st.mean.size()), st.batches - 1);
+  for (int ty = 0; ty < st.tiles_y; ++ty)
+    for (int tx = 0; tx < st.tiles_x; ++tx) {
+      double expect = 0;
+      for (int y = ty * tile; y < (ty + 1) * tile; ++y)
+        for (int x = tx * tile; x < (tx + 1) * tile; ++x) expect += expected_pixel(x, y);
+      expect /= tile * tile;
+      const size_t t = size_t(ty * st.tiles_x + tx);
+      const double se = std::max(st.se[t], 1e-6 * expect + 1e-12);  // delta lights: no noise at all
+      EXPECT_LT(std::abs(st.mean[t] - expect) / se, crit)
+          << "tile " << tx << "," << ty << " rendered " << st.mean[t] << " analytic " << expect;
+    }
+}
+
+TEST(Analytic, PlaneUnderPointLightFollowsInverseSquareCosine) {
+  const Vec3d p{0.3, 1.2, -0.1};
+  const double I = 2.0;
+  expect_plane_matches(PointLightDesc{p, Rgb(float(I))}, [&](const Vec3d& x) {
+    const Vec3d d = p - x;
+    return I * d.y / std::pow(length(d), 3.0);
+  });
+}
+
+TEST(Analytic, PlaneUnderSpotLightFollowsSmoothstepFalloff) {
+  const Vec3d p{0.0, 1.0, 0.0}, axis = normalize(Vec3d(0.2, -1, 0.1));
+  const double I = 3.0, cone = 35, start = 20;
+  expect_plane_matches(SpotLightDesc{p, axis, Rgb(float(I)), cone, start}, [&](const Vec3d& x) {
+    const Vec3d d = p - x;
+    const double dist = length(d), c = dot(-d / dist, axis);
+    const double lo = std::cos(cone * M_PI / 180), hi = std::cos(start * M_PI / 180);
+    const double t = std::clamp((c - lo) / (hi - lo), 0.0, 1.0);
+    return I * t * t * (3 - 2 * t) * d.y / (dist * dist * dist);
+  });
+}
+
+TEST(Analytic, PlaneUnderSunDiskGetsIrradianceTimesCosine) {
+  // A uniform disk wholly above the horizon gives E_perp * cos(theta_centre) exactly.
+  const Vec3d dir = normalize(Vec3d(0.5, 1.0, -0.3));
+  const double E = 2.5;
+  expect_plane_matches(SunLightDesc{dir, Rgb(float(E)), 20.0}, [&](const Vec3d&) { return E * dir.y; });
+}
+
+TEST(Analytic, PlaneUnderConstantSkyGetsPiL) {
+  // The plane sees the upper hemisphere of a uniform sky: E = pi * L, with MIS
+  // between the cosine-sampled BSDF and the uniform environment sampling.
+  EnvironmentLightDesc sky;
+  sky.radiance = Rgb(0.7f);
+  expect_plane_matches(sky, [&](const Vec3d&) { return M_PI * 0.7; });
+}
+
 // A sphere under a delta sun, seen from the side so much of it is lit at
 // grazing angles: every pixel fully on the sphere must match rho/pi*E*cos.
 void expect_no_acne(double scale, Vec3d offset) {

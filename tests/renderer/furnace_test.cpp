@@ -37,6 +37,16 @@ TEST(Furnace, WhiteDiffuseSphereVanishes) {
   expect_furnace_is_one(furnace(DiffuseMaterialDesc{Rgb(1.f)}));
 }
 
+TEST(Furnace, WhiteDiffuseSphereVanishesInAConstantEnvironmentMap) {
+  // Same furnace through the image path: importance sampling of a lat-long
+  // map (rotated) must still integrate to exactly 1.
+  SceneDescription d = furnace(DiffuseMaterialDesc{Rgb(1.f)});
+  EnvironmentLightDesc& env = std::get<EnvironmentLightDesc>(d.lights[0].light);
+  env.image = EnvironmentImage{16, 8, std::vector<Rgb>(16 * 8, Rgb(1.f))};
+  env.rotation = 33;
+  expect_furnace_is_one(d);
+}
+
 TEST(Furnace, SmoothGlassSphereVanishes) {
   expect_furnace_is_one(furnace(DielectricMaterialDesc{1.5, 0.0}));
 }
