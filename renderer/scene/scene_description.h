@@ -17,6 +17,7 @@
 
 #include "renderer/math/rgb.h"
 #include "renderer/math/vec.h"
+#include "renderer/volume/density_grid.h"
 
 namespace vesper {
 
@@ -125,6 +126,37 @@ struct LightDesc {
   std::string group;  // empty = no group
 };
 
+struct BoxDesc {
+  Vec3d min, max;  // min < max on every axis
+};
+// Homogeneous participating medium; without bounds it fills the whole scene.
+struct HomogeneousMediumDesc {
+  Rgb sigma_a, sigma_s;  // per scene unit
+  double g = 0;          // Henyey-Greenstein asymmetry, (-1, 1)
+  std::optional<BoxDesc> bounds;
+};
+// Heterogeneous medium from an OpenVDB grid: sigma(x) = density(x) * density_scale * sigma.
+// World position of index point p: transform.apply_point(density->index_to_world().apply_point(p)).
+struct VdbMediumDesc {
+  std::string file;  // resolved path, for messages and the hash
+  std::string grid = "density";
+  std::shared_ptr<const DensityGrid> density;  // loaded and validated
+  double density_scale = 1;
+  Rgb sigma_a, sigma_s{1.f};
+  double g = 0;
+  Transform transform;
+  std::string emission_grid;                    // empty = no emission
+  std::shared_ptr<const DensityGrid> emission;  // loaded when emission_grid is set
+  double emission_scale = 0;
+  // Emission coefficient (radiance added per scene unit of path, as in Cycles):
+  // emission(x) * emission_scale * emission_color, attenuated like any light.
+  Rgb emission_color{1.f};
+};
+struct MediumDesc {
+  std::string name;
+  std::variant<HomogeneousMediumDesc, VdbMediumDesc> medium;
+};
+
 struct SceneDescription {
   std::filesystem::path file;  // the scene file, for messages
   CameraDesc camera;
@@ -134,6 +166,7 @@ struct SceneDescription {
   std::vector<MaterialDesc> materials;
   std::vector<ShapeDesc> shapes;
   std::vector<LightDesc> lights;  // at most one environment light
+  std::vector<MediumDesc> media;  // in file order; overlapping media add their coefficients
   // FNV-1a 64 (16 hex digits) of the canonical JSON text + bytes of referenced files.
   std::string content_hash;
 };
