@@ -27,6 +27,22 @@ std::shared_ptr<const DensityGrid> load_vdb_grid(const std::filesystem::path& fi
 // Names and value types of every grid in a file ("density: float").
 std::vector<std::string> list_vdb_grids(const std::filesystem::path& file);
 
+// Everything `vesper vdb info` shows about one grid. Value range and active
+// counts are read from the grid itself (the file's metadata can be absent).
+struct VdbGridInfo {
+  std::string name;
+  std::string value_type;   // "float", "vec3s", ...
+  std::string grid_class;   // "fog volume", "level set", "unknown", ...
+  unsigned long long active_voxels = 0;
+  IndexBox active_box;
+  bool has_range = false;   // scalar (float/double/int) grids only
+  double min_value = 0, max_value = 0;
+  double background = 0;    // scalar grids only
+  Affine3d index_to_world;  // identity when the transform is not linear
+  bool linear_transform = true;
+};
+std::vector<VdbGridInfo> describe_vdb_grids(const std::filesystem::path& file);
+
 // A dense block of voxels to write as an OpenVDB fog volume (values < cutoff
 // are left inactive). index_to_world is a uniform voxel size + translation.
 struct DenseVolume {
