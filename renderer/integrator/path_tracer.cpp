@@ -1,16 +1,23 @@
 #include "renderer/integrator/path_tracer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "renderer/integrator/equiangular.h"
+#include "renderer/integrator/volume_tracking.h"
 #include "renderer/math/frame.h"
+#include "renderer/media/henyey_greenstein.h"
 
 namespace vesper {
 namespace {
 
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
 bool is_transmissive(const Bsdf& bsdf) { return std::holds_alternative<DielectricBsdf>(bsdf); }
 
 // Emitted radiance from infinite lights for an escaped ray, MIS-weighted
-// against the BSDF sample that produced it.
+// against the BSDF or phase sample that produced it.
 Rgb escaped_radiance(const Scene& scene, const Vec3& dir, bool count_fully, float bsdf_pdf) {
   Rgb sum;
   for (uint32_t li : scene.infinite_lights) {
@@ -32,31 +39,171 @@ Rgb escaped_radiance(const Scene& scene, const Vec3& dir, bool count_fully, floa
   return sum;
 }
 
-}  // namespace
+// Fraction of light arriving along the shadow ray: 0 when a surface blocks
+// it, the media's transmittance otherwise.
+template <bool kMedia>
+Rgb shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& dir, float tmax,
+                         Sampler& sampler, uint32_t& rays) {
+  ++rays;
+  if (scene.accel->occluded(origin, dir, tmax)) return Rgb{};
+  if constexpr (kMedia)
+    return estimate_transmittance(scene.media, Ray{origin, dir, tmax}, tmax, sampler);
+  return Rgb(1.f);
+}
 
-PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
-                      const PathTracerOptions& options) {
+// Position of a point or spot light, for equiangular sampling.
+const Vec3* point_light_position(const Light& light) {
+  if (const auto* pl = std::get_if<PointLight>(&light)) return &pl->position;
+  if (const auto* sl = std::get_if<SpotLight>(&light)) return &sl->position;
+  return nullptr;
+}
+
+struct NoDeltaWeight {
+  float operator()(size_t) const { return 1.f; }
+};
+
+// One light sample for the point p. `eval(wi)` returns {f * |cos| (or phase),
+// scattering pdf}; `delta_weight(light)` is the MIS weight of this strategy
+// for delta lights (1 unless equiangular sampling competes).
+template <bool kMedia, typename Eval, typename DeltaWeight = NoDeltaWeight>
+Rgb sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset_normal, Sampler& sampler,
+                  uint32_t& rays, const Eval& eval, const DeltaWeight& delta_weight = {}) {
+  float pmf = 0.f, u_rest = 0.f;
+  const size_t li = scene.light_sampler.sample(sampler.next1(), &pmf, &u_rest);
+  const Vec2 u_light = sampler.next2();
+  if (pmf <= 0.f) return {};
+  const auto ls = sample_light(scene.lights[li], p, u_light);
+  if (!ls || ls->pdf <= 0.f || ls->radiance.is_black()) return {};
+  const auto [f, scatter_pdf] = eval(ls->wi);
+  if (f.is_black()) return {};
+  Vec3 origin = p;
+  if (offset_normal.x != 0.f || offset_normal.y != 0.f || offset_normal.z != 0.f)
+    origin =
+        offset_ray_origin(p, dot(ls->wi, offset_normal) >= 0.f ? offset_normal : -offset_normal);
+  // Stop short of the light's surface so it does not occlude itself.
+  const float tmax = std::isinf(ls->distance) ? kInfinity : ls->distance * (1.f - 1e-4f);
+  const Rgb tr = shadow_transmittance<kMedia>(scene, origin, ls->wi, tmax, sampler, rays);
+  if (tr.is_black()) return {};
+  const float light_pdf = pmf * ls->pdf;
+  const float w = ls->is_delta ? delta_weight(li) : power_heuristic(light_pdf, scatter_pdf);
+  return f * ls->radiance * tr * (w / light_pdf);
+}
+
+template <bool kMedia>
+PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
+                 const PathTracerOptions& options) {
   PathResult result;
   Rgb throughput(1.f);
   Ray ray = camera_ray;
-  bool count_emission_fully = true;  // camera ray or delta BSDF bounce: no MIS partner
-  float prev_bsdf_pdf = 0.f;
+  bool count_emission_fully = true;  // camera ray or delta bounce: no MIS partner
+  float prev_scatter_pdf = 0.f;
   const bool have_lights = !scene.light_sampler.empty();
 
   for (int depth = 0;; ++depth) {
     const std::optional<SurfaceHit> hit = scene.accel->intersect(ray);
     ++result.rays;
-    if (!hit) {
-      result.radiance +=
-          throughput * escaped_radiance(scene, ray.dir, count_emission_fully, prev_bsdf_pdf);
-      break;
-    }
-    if (depth == 0) {
+    if (depth == 0 && hit) {
       result.alpha = 1.f;
       if (options.want_aovs) {
         result.depth = float(hit->t * scene.unit_scale);
         result.normal = dot(hit->n, ray.dir) < 0.f ? hit->n : -hit->n;
       }
+    }
+
+    if constexpr (kMedia) {
+      thread_local std::vector<MajorantSpan> spans;
+      scene.media.majorant_spans(ray, hit ? hit->t : kInfinity, spans);
+      const bool analytic =
+          !spans.empty() &&
+          std::all_of(spans.begin(), spans.end(), [](const MajorantSpan& s) { return s.analytic; });
+      const bool use_equiangular =
+          options.equiangular && analytic && have_lights && depth < options.max_depth;
+      // MIS weight of distance sampling + NEE against equiangular sampling, for delta light li at
+      // t.
+      auto equiangular_pdf = [&](size_t li, float t) -> float {
+        const Vec3* lp = point_light_position(scene.lights[li]);
+        if (!lp) return 0.f;
+        const auto seg =
+            EquiangularSegment::make(ray.origin, ray.dir, *lp, spans.front().t0, spans.back().t1);
+        return seg ? seg->pdf(t) : 0.f;
+      };
+      if (use_equiangular) {
+        // Equiangular strategy: one distance per segment toward a chosen point/spot light.
+        float pmf = 0.f, u_rest = 0.f;
+        const size_t li = scene.light_sampler.sample(sampler.next1(), &pmf, &u_rest);
+        const Vec2 u_eq = sampler.next2();
+        const Vec3* lp = point_light_position(scene.lights[li]);
+        const auto seg = lp ? EquiangularSegment::make(ray.origin, ray.dir, *lp, spans.front().t0,
+                                                       spans.back().t1)
+                            : std::nullopt;
+        if (seg && pmf > 0.f) {
+          const float t = seg->sample(u_eq.x);
+          const float pdf_e = seg->pdf(t);
+          const Vec3 x = ray.origin + ray.dir * t;
+          const MediumCoefficients c = scene.media.coefficients(x);
+          const auto ls = sample_light(scene.lights[li], x, {});
+          if (pdf_e > 0.f && !c.sigma_s.is_black() && ls && !ls->radiance.is_black()) {
+            const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y)};
+            const float f = phase.eval(-ray.dir, ls->wi);
+            const Rgb tr_light = shadow_transmittance<kMedia>(
+                scene, x, ls->wi, ls->distance * (1.f - 1e-4f), sampler, result.rays);
+            if (!tr_light.is_black()) {
+              const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
+              const float w = power_heuristic(pdf_e, pdf_a);
+              const Rgb tr = analytic_transmittance(scene.media, spans, ray, t);
+              result.radiance +=
+                  throughput * tr * c.sigma_s * ls->radiance * tr_light * (f * w / (pdf_e * pmf));
+            }
+          }
+        }
+      }
+      const FreeFlight ff =
+          sample_free_flight(scene.media, spans, ray, sampler, throughput, result.radiance);
+      if (ff.event == FlightEvent::Absorbed) break;
+      if (ff.event == FlightEvent::Scattered) {
+        if (depth >= options.max_depth) break;
+        const Vec3 p = ray.origin + ray.dir * ff.t;
+        const Vec3 wo = -ray.dir;
+        const HgPhase phase{ff.g};
+        if (have_lights) {
+          auto eval_phase = [&](const Vec3& wi) {
+            const float f = phase.eval(wo, wi);
+            return std::pair{Rgb(f), f};
+          };
+          if (use_equiangular) {
+            const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, ff.t);
+            auto delta_weight = [&](size_t li) {
+              return power_heuristic(pdf_a, equiangular_pdf(li, ff.t));
+            };
+            result.radiance +=
+                throughput * sample_direct<kMedia>(scene, p, Vec3(0.f), sampler, result.rays,
+                                                   eval_phase, delta_weight);
+          } else {
+            result.radiance += throughput * sample_direct<kMedia>(scene, p, Vec3(0.f), sampler,
+                                                                  result.rays, eval_phase);
+          }
+        } else {
+          sampler.next1();
+          sampler.next2();
+        }
+        const Vec3 wi = phase.sample(wo, sampler.next2());
+        prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
+        count_emission_fully = false;
+        ray = Ray{p, wi};
+        if (depth + 1 >= options.rr_start_depth) {
+          const float q = std::max(0.05f, 1.f - throughput.max_component());
+          if (sampler.next1() < q) break;
+          throughput *= 1.f / (1.f - q);
+        }
+        if (!throughput.is_finite()) break;
+        continue;
+      }
+    }
+
+    if (!hit) {
+      result.radiance +=
+          throughput * escaped_radiance(scene, ray.dir, count_emission_fully, prev_scatter_pdf);
+      break;
     }
 
     // Emitters are one-sided and do not reflect: the path ends here.
@@ -68,11 +215,10 @@ PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sample
         if (!count_emission_fully) {
           const float light_pdf =
               scene.light_sampler.pmf(size_t(hit->light)) * ql.pdf(ray.dir, hit->t);
-          w = power_heuristic(prev_bsdf_pdf, light_pdf);
+          w = power_heuristic(prev_scatter_pdf, light_pdf);
         }
         result.radiance += throughput * le * w;
       }
-      if (depth == 0 && options.want_aovs) result.albedo = Rgb{};
       break;
     }
     if (depth >= options.max_depth) break;
@@ -89,30 +235,13 @@ PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sample
 
     // Next-event estimation.
     if (have_lights && !bsdf_is_delta(bsdf)) {
-      float pmf = 0.f, u_rest = 0.f;
-      const size_t li = scene.light_sampler.sample(sampler.next1(), &pmf, &u_rest);
-      const Vec2 u_light = sampler.next2();
-      if (pmf > 0.f) {
-        const auto ls = sample_light(scene.lights[li], hit->p, u_light);
-        if (ls && ls->pdf > 0.f && !ls->radiance.is_black()) {
-          const Vec3 wi = frame.to_local(ls->wi);
-          const Rgb f = bsdf_eval(bsdf, wo, wi);
-          if (!f.is_black()) {
-            const Vec3 n_off = dot(ls->wi, hit->n) >= 0.f ? hit->n : -hit->n;
-            const Vec3 origin = offset_ray_origin(hit->p, n_off);
-            // Stop short of the light's surface so it does not occlude itself.
-            const float tmax =
-                std::isinf(ls->distance) ? ls->distance : ls->distance * (1.f - 1e-4f);
-            ++result.rays;
-            if (!scene.accel->occluded(origin, ls->wi, tmax)) {
-              const float light_pdf = pmf * ls->pdf;
-              const float w =
-                  ls->is_delta ? 1.f : power_heuristic(light_pdf, bsdf_pdf(bsdf, wo, wi));
-              result.radiance += throughput * f * ls->radiance * (std::abs(wi.z) * w / light_pdf);
-            }
-          }
-        }
-      }
+      result.radiance +=
+          throughput *
+          sample_direct<kMedia>(
+              scene, hit->p, hit->n, sampler, result.rays, [&](const Vec3& wi_world) {
+                const Vec3 wi = frame.to_local(wi_world);
+                return std::pair{bsdf_eval(bsdf, wo, wi) * std::abs(wi.z), bsdf_pdf(bsdf, wo, wi)};
+              });
     } else {
       // Keep the sample dimensions aligned whether or not NEE ran.
       sampler.next1();
@@ -126,7 +255,7 @@ PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sample
     if (!bs || bs->pdf <= 0.f || bs->f.is_black()) break;
     throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
     count_emission_fully = bs->is_specular;
-    prev_bsdf_pdf = bs->pdf;
+    prev_scatter_pdf = bs->pdf;
 
     const Vec3 wi_world = normalize(frame.to_world(bs->wi));
     const Vec3 n_off = dot(wi_world, hit->n) >= 0.f ? hit->n : -hit->n;
@@ -140,6 +269,15 @@ PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sample
     if (!throughput.is_finite()) break;
   }
   return result;
+}
+
+}  // namespace
+
+PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
+                      const PathTracerOptions& options) {
+  // Scenes without media get a path tracer compiled without any medium code.
+  return scene.media.empty() ? trace<false>(scene, camera_ray, sampler, options)
+                             : trace<true>(scene, camera_ray, sampler, options);
 }
 
 }  // namespace vesper

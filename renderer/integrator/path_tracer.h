@@ -22,6 +22,8 @@ struct PathTracerOptions {
   int max_depth = 8;  // scattering events after the camera vertex
   bool want_aovs = false;
   int rr_start_depth = 3;  // Russian roulette from this many scattering events on
+  bool equiangular =
+      true;  // equiangular sampling toward point/spot lights in homogeneous media (MIS)
 };
 
 PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sampler,

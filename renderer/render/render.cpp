@@ -65,6 +65,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   PathTracerOptions pt;
   pt.max_depth = scene.render.max_depth;
   pt.want_aovs = !aovs.empty();
+  pt.equiangular = options.equiangular;
 
   const int tiles_x = (width + kTileSize - 1) / kTileSize;
   const int tiles_y = (height + kTileSize - 1) / kTileSize;

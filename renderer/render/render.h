@@ -20,6 +20,7 @@ struct RenderOptions {
   // sample_end defaults to spp. Disjoint ranges merge by sample count.
   int sample_begin = 0;
   std::optional<int> sample_end;
+  bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
   // Called from worker threads after each tile (must be thread-safe).
   std::function<void(size_t tiles_done, size_t tiles_total)> on_progress;
 };

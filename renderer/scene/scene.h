@@ -13,6 +13,8 @@
 #include "renderer/core/accel.h"
 #include "renderer/core/camera.h"
 #include "renderer/lights/light.h"
+#include "renderer/media/media_set.h"
+#include "renderer/scene/media_builder.h"
 #include "renderer/scene/scene_description.h"
 
 namespace vesper {
@@ -27,12 +29,17 @@ struct Scene {
   std::vector<uint32_t> infinite_lights;  // lights a ray that escapes can hit
   LightSampler light_sampler;
   std::unique_ptr<Accel> accel;
+  MediaSet media;         // empty: no medium code runs at all
   Vec3d origin;           // world position of render-space (0,0,0)
   double unit_scale = 1;  // world units per render-space unit
   float radius = 1;       // bounding radius of the render-space scene around the origin
   std::string content_hash;
 };
 
-Scene build_scene(const SceneDescription& desc);
+struct SceneBuildOptions {
+  MediaBuildOptions media;
+};
+
+Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options = {});
 
 }  // namespace vesper

@@ -71,12 +71,29 @@ Bounds scene_bounds(const SceneDescription& d) {
         },
         l.light);
   }
+  for (const auto& m : d.media) {
+    if (const auto* h = std::get_if<HomogeneousMediumDesc>(&m.medium)) {
+      if (h->bounds) {
+        b.add(h->bounds->min);
+        b.add(h->bounds->max);
+      }
+    } else if (const auto* v = std::get_if<VdbMediumDesc>(&m.medium); v && v->density) {
+      const IndexBox box = v->density->active_box();
+      if (box.empty()) continue;
+      for (int c = 0; c < 8; ++c) {
+        const Vec3d ip{double((c & 1) ? box.max[0] + 1 : box.min[0] - 1),
+                       double((c & 2) ? box.max[1] + 1 : box.min[1] - 1),
+                       double((c & 4) ? box.max[2] + 1 : box.min[2] - 1)};
+        b.add(v->transform.apply_point(v->density->index_to_world().apply_point(ip)));
+      }
+    }
+  }
   return b;
 }
 
 }  // namespace
 
-Scene build_scene(const SceneDescription& desc) {
+Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options) {
   Scene scene;
   scene.film = desc.film;
   scene.render = desc.render;
@@ -209,6 +226,7 @@ Scene build_scene(const SceneDescription& desc) {
     scene.light_groups.push_back(ld.group);
   }
   scene.light_sampler = LightSampler(scene.lights, scene.radius);
+  scene.media = build_media(desc, scene.origin, scene.unit_scale, options.media);
   scene.accel = std::make_unique<Accel>(std::move(quads), std::move(spheres), std::move(meshes));
   return scene;
 }

@@ -1,0 +1,42 @@
+#pragma once
+// All media of a scene, queried along rays: a piecewise-constant grey
+// majorant (sum over the media a ray crosses) and the coefficients at a point.
+#include <vector>
+
+#include "renderer/media/medium.h"
+
+namespace vesper {
+
+struct MajorantSpan {
+  float t0 = 0, t1 = 0;
+  float sigma_maj = 0;    // >= max over channels of sigma_t anywhere in the span
+  bool analytic = false;  // only homogeneous media: sigma_t is constant in the span
+};
+
+struct MediumCoefficients {
+  Rgb sigma_a, sigma_s, emission;
+};
+
+class MediaSet {
+ public:
+  MediaSet() = default;
+  explicit MediaSet(std::vector<Medium> media);
+
+  bool empty() const { return media_.empty(); }
+  bool has_emission() const { return has_emission_; }
+  const std::vector<Medium>& media() const { return media_; }
+
+  // Spans over [0, tmax] of the ray (tmax may be infinite), front to back;
+  // gaps without any medium are left out. `out` is cleared first.
+  void majorant_spans(const Ray& ray, float tmax, std::vector<MajorantSpan>& out) const;
+  MediumCoefficients coefficients(const Vec3& p) const;
+  // Henyey-Greenstein g of the medium that scattered at p, picked with
+  // probability proportional to each medium's average sigma_s there.
+  float pick_phase_g(const Vec3& p, float u) const;
+
+ private:
+  std::vector<Medium> media_;
+  bool has_emission_ = false;
+};
+
+}  // namespace vesper

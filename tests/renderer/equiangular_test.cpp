@@ -1,0 +1,129 @@
+// Equiangular sampling: the distribution matches its density (chi-square),
+// and turning it on changes noise, not the expected image (Z-test).
+#include <gtest/gtest.h>
+
+#include <boost/math/special_functions/gamma.hpp>
+
+#include "render_stats.h"
+#include "renderer/integrator/equiangular.h"
+#include "renderer/sampling/sampler.h"
+#include "scene_fixtures.h"
+
+namespace vesper::test {
+namespace {
+
+// Pearson chi-square of n samples in `bins` equal-width bins of [ta, tb]
+// against the exact CDF of the equiangular density.
+double equiangular_chi2_p(const EquiangularSegment& seg, int bins, int n, uint64_t seed) {
+  std::vector<double> observed(size_t(bins), 0.0);
+  Sampler s(seed);
+  for (int i = 0; i < n; ++i) {
+    const float t = seg.sample(s.next1());
+    const int b = std::min(bins - 1, int((t - seg.ta) / (seg.tb - seg.ta) * bins));
+    observed[size_t(b)] += 1;
+  }
+  auto cdf = [&](double t) {
+    return (std::atan2(t - seg.delta, seg.dist) - seg.theta_a) /
+           (double(seg.theta_b) - seg.theta_a);
+  };
+  double chi2 = 0;
+  for (int b = 0; b < bins; ++b) {
+    const double a = seg.ta + (seg.tb - seg.ta) * b / bins,
+                 c = seg.ta + (seg.tb - seg.ta) * (b + 1) / bins;
+    const double expected = n * (cdf(c) - cdf(a));
+    chi2 += (observed[size_t(b)] - expected) * (observed[size_t(b)] - expected) / expected;
+  }
+  return boost::math::gamma_q((bins - 1) / 2.0, chi2 / 2.0);
+}
+
+TEST(Equiangular, SamplesFollowTheirDensity) {
+  const double level = 1.0 - std::pow(0.99, 1.0 / 3);
+  // Light beside the segment, near one end, and far away.
+  const Vec3 o(0, 0, 0), d(1, 0, 0);
+  for (const Vec3& light : {Vec3(2.f, 0.3f, 0.f), Vec3(0.1f, 0.05f, 0.f), Vec3(5.f, 20.f, 3.f)}) {
+    const auto seg = EquiangularSegment::make(o, d, light, 0.f, 4.f);
+    ASSERT_TRUE(seg);
+    EXPECT_GT(equiangular_chi2_p(*seg, 50, 200000, 3), level)
+        << "light at " << light.x << "," << light.y;
+  }
+}
+
+TEST(Equiangular, DensityIntegratesToOne) {
+  const auto seg = EquiangularSegment::make({0, 0, 0}, {0, 0, 1}, {0.2f, 0.f, 1.f}, 0.5f, 3.f);
+  ASSERT_TRUE(seg);
+  double sum = 0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) sum += seg->pdf(0.5f + 2.5f * (i + 0.5f) / n) * 2.5 / n;
+  EXPECT_NEAR(sum, 1.0, 1e-3);
+  EXPECT_FALSE(
+      EquiangularSegment::make({0, 0, 0}, {0, 0, 1}, {0, 0, 2}, 0.f, 3.f));  // light on the ray
+}
+
+// A spot light shining through fog past an occluder: the light-shaft case.
+SceneDescription fog_shaft_scene() {
+  SceneDescription d = empty_scene(24, 24, 16, 4);
+  d.camera.from = {0, 1, 4};
+  d.camera.to = {0, 0.8, 0};
+  d.camera.fov_degrees = 45;
+  const uint32_t grey = add_material(d, "grey", DiffuseMaterialDesc{Rgb(0.4f)});
+  add_quad(d, {-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, grey);
+  add_quad(d, {-0.3, 1.5, -0.3}, {0.6, 0, 0}, {0, 0, 0.6}, grey);  // occluder under the light
+  add_light(d, SpotLightDesc{{0.1, 2.5, 0.0}, normalize(Vec3d(0, -1, 0)), Rgb(40.f), 40.0, 30.0});
+  HomogeneousMediumDesc fog;
+  fog.sigma_s = Rgb(0.3f);
+  fog.sigma_a = Rgb(0.05f);
+  fog.g = 0.3;
+  fog.bounds = BoxDesc{{-3, 0, -3}, {3, 3, 3}};
+  MediumDesc& m = d.media.emplace_back();
+  m.name = "fog";
+  m.medium = fog;
+  return d;
+}
+
+TEST(Equiangular, OnAndOffRenderTheSameExpectedImage) {
+  const Scene scene = build_scene(fog_shaft_scene());
+  const int batches = 10;
+  auto stats_with = [&](bool equiangular, uint64_t seed0) {
+    TileStats st;
+    const int w = scene.film.width, h = scene.film.height, tile = 6;
+    st.tiles_x = w / tile;
+    st.tiles_y = h / tile;
+    st.batches = batches;
+    std::vector<std::vector<double>> per(size_t(st.tiles_x * st.tiles_y));
+    for (int b = 0; b < batches; ++b) {
+      RenderOptions o;
+      o.seed = seed0 + uint64_t(b);
+      o.equiangular = equiangular;
+      const RenderResult r = render(scene, o);
+      std::vector<double> sum(per.size(), 0.0);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          sum[size_t((y / tile) * st.tiles_x + x / tile)] += pixel_luminance(r.image, x, y);
+      for (size_t t = 0; t < per.size(); ++t) per[t].push_back(sum[t] / (tile * tile));
+    }
+    for (auto& v : per) {
+      double m = 0, var = 0;
+      for (double x : v) m += x;
+      m /= batches;
+      for (double x : v) var += (x - m) * (x - m);
+      st.mean.push_back(m);
+      st.se.push_back(std::sqrt(var / (batches - 1) / batches));
+    }
+    return st;
+  };
+  const TileStats on = stats_with(true, 100), off = stats_with(false, 500);
+  const double crit = sidak_t_critical(0.01, int(on.mean.size()), batches - 1);
+  double se_on = 0, se_off = 0;
+  for (size_t t = 0; t < on.mean.size(); ++t) {
+    const double se = std::sqrt(on.se[t] * on.se[t] + off.se[t] * off.se[t]);
+    EXPECT_LT(std::abs(on.mean[t] - off.mean[t]) / std::max(se, 1e-9), crit)
+        << "tile " << t << ": " << on.mean[t] << " vs " << off.mean[t];
+    se_on += on.se[t];
+    se_off += off.se[t];
+  }
+  std::printf("mean tile standard error: equiangular on %.5f, off %.5f\n", se_on / on.se.size(),
+              se_off / off.se.size());
+}
+
+}  // namespace
+}  // namespace vesper::test

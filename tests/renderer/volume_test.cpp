@@ -1,0 +1,249 @@
+// Participating media: transmittance, volume furnace, grid vs homogeneous,
+// majorant grid vs global majorant, Henyey-Greenstein sampling, stress.
+#include <gtest/gtest.h>
+
+#include "chi2.h"
+#include "render_stats.h"
+#include "renderer/integrator/volume_tracking.h"
+#include "renderer/media/henyey_greenstein.h"
+#include "scene_fixtures.h"
+#include "test_grids.h"
+
+namespace vesper::test {
+namespace {
+
+constexpr double kAlpha = 0.01;
+
+HomogeneousMediumDesc fog_box(Rgb sa, Rgb ss, double g, Vec3d lo, Vec3d hi) {
+  HomogeneousMediumDesc m;
+  m.sigma_a = sa;
+  m.sigma_s = ss;
+  m.g = g;
+  m.bounds = BoxDesc{lo, hi};
+  return m;
+}
+
+void add_medium(SceneDescription& d, std::string name,
+                std::variant<HomogeneousMediumDesc, VdbMediumDesc> m) {
+  MediumDesc& md = d.media.emplace_back();
+  md.name = std::move(name);
+  md.medium = std::move(m);
+}
+
+// A grid medium of constant density 1 filling the world box [lo, hi] exactly
+// (n voxels per side).
+VdbMediumDesc constant_grid_box(Rgb sa, Rgb ss, double g, Vec3d lo, double size, int n = 9) {
+  VdbMediumDesc v;
+  v.file = "test-grid";
+  v.density =
+      std::make_shared<FunctionGrid>(n, size / (n - 1), lo, [](const Vec3&) { return 1.f; });
+  v.sigma_a = sa;
+  v.sigma_s = ss;
+  v.g = g;
+  return v;
+}
+
+// ---- transmittance ---------------------------------------------------------
+
+TEST(Transmittance, HomogeneousSlabIsExactlyBeerLambert) {
+  SceneDescription d = empty_scene(4, 4, 1, 1);
+  add_medium(d, "fog",
+             fog_box(Rgb(0.2f, 0.5f, 1.f), Rgb(0.3f, 0.1f, 0.f), 0, {-10, -10, -1}, {10, 10, 1}));
+  const Scene scene = build_scene(d);
+  Sampler s(uint64_t(1));
+  const Vec3d o_world{0.5, 0.3, -5}, dir = normalize(Vec3d(0.1, 0.2, 1));
+  const Ray ray{Vec3((o_world - scene.origin) / scene.unit_scale), Vec3(dir)};
+  const Rgb tr = estimate_transmittance(scene.media, ray, 1e30f, s);
+  const double path = 2.0 / dir.z;  // through the slab z in [-1, 1]
+  const double expect[3] = {std::exp(-0.5 * path), std::exp(-0.6 * path), std::exp(-1.0 * path)};
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(tr[c], expect[c], 1e-5 * expect[c] + 1e-7) << "channel " << c;
+}
+
+TEST(Transmittance, RatioTrackingThroughConstantGridMatchesBeerLambert) {
+  // Ratio tracking is a random estimator: its mean over many rays must match
+  // exp(-sigma_t d) (Z-test, alpha = 0.01).
+  SceneDescription d = empty_scene(4, 4, 1, 1);
+  add_medium(d, "grid", constant_grid_box(Rgb(0.3f), Rgb(0.4f, 0.2f, 0.1f), 0, {-1, -1, -1}, 2.0));
+  const Scene scene = build_scene(d);
+  const Vec3d o_world{0.2, -0.1, -4};
+  const Ray ray{Vec3((o_world - scene.origin) / scene.unit_scale), Vec3(0, 0, 1)};
+  const int n = 200000;
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+  for (int i = 0; i < n; ++i) {
+    Sampler s(uint64_t(77), uint64_t(i), 0);
+    const Rgb tr = estimate_transmittance(scene.media, ray, 1e30f, s);
+    for (int c = 0; c < 3; ++c) {
+      sum[c] += tr[c];
+      sum2[c] += double(tr[c]) * tr[c];
+    }
+  }
+  const double sigma_t[3] = {0.7, 0.5, 0.4};
+  const double z = sidak_z_critical(kAlpha, 3);
+  for (int c = 0; c < 3; ++c) {
+    const double mean = sum[c] / n, var = sum2[c] / n - mean * mean;
+    const double expect = std::exp(-sigma_t[c] * 2.0);
+    EXPECT_LT(std::abs(mean - expect) / std::sqrt(var / n), z)
+        << "channel " << c << " mean " << mean << " expected " << expect;
+  }
+}
+
+// ---- furnace ---------------------------------------------------------------
+
+void expect_volume_furnace(double g) {
+  SceneDescription d = empty_scene(24, 24, 16, 1000);
+  d.camera.from = {0, 0, 4};
+  d.camera.to = {0, 0, 0};
+  d.camera.fov_degrees = 30;
+  add_light(d, EnvironmentLightDesc{});
+  add_medium(d, "cloud", fog_box(Rgb(0.f), Rgb(1.5f), g, {-0.8, -0.8, -0.8}, {0.8, 0.8, 0.8}));
+  const Scene scene = build_scene(d);
+  const TileStats st = tile_stats(scene, 12, 16, 6);
+  const double crit = sidak_t_critical(kAlpha, int(st.mean.size()), st.batches - 1);
+  for (size_t t = 0; t < st.mean.size(); ++t)
+    EXPECT_LT(std::abs(st.mean[t] - 1.0) / std::max(st.se[t], 1e-7), crit)
+        << "g=" << g << " tile " << t << " mean " << st.mean[t] << " se " << st.se[t];
+}
+
+TEST(VolumeFurnace, BackScatteringMediumVanishes) { expect_volume_furnace(-0.5); }
+TEST(VolumeFurnace, IsotropicMediumVanishes) { expect_volume_furnace(0.0); }
+TEST(VolumeFurnace, ForwardScatteringMediumVanishes) { expect_volume_furnace(0.8); }
+
+// ---- grid vs homogeneous ----------------------------------------------------
+
+SceneDescription lit_box_scene() {
+  SceneDescription d = empty_scene(24, 24, 16, 8);
+  d.camera.from = {0, 0.2, 3.5};
+  d.camera.to = {0, 0, 0};
+  d.camera.fov_degrees = 35;
+  const uint32_t floor = add_material(d, "floor", DiffuseMaterialDesc{Rgb(0.5f)});
+  add_quad(d, {-3, -1, 3}, {6, 0, 0}, {0, 0, -6}, floor);
+  add_light(d, PointLightDesc{{0.5, 2.0, 0.5}, Rgb(6.f)});
+  add_light(d, EnvironmentLightDesc{Rgb(0.2f), std::nullopt, "", 1, 0});
+  return d;
+}
+
+void expect_same_tiles(const Scene& a, const Scene& b, int batches = 10) {
+  const TileStats sa = tile_stats(a, batches, 16, 6, 100);
+  const TileStats sb = tile_stats(b, batches, 16, 6, 900);
+  const double crit = sidak_t_critical(kAlpha, int(sa.mean.size()), batches - 1);
+  for (size_t t = 0; t < sa.mean.size(); ++t) {
+    const double se = std::sqrt(sa.se[t] * sa.se[t] + sb.se[t] * sb.se[t]);
+    EXPECT_LT(std::abs(sa.mean[t] - sb.mean[t]) / std::max(se, 1e-9), crit)
+        << "tile " << t << ": " << sa.mean[t] << " vs " << sb.mean[t];
+  }
+}
+
+TEST(GridMedium, ConstantDensityGridRendersLikeHomogeneousMedium) {
+  SceneDescription a = lit_box_scene(), b = lit_box_scene();
+  const Rgb sa(0.2f), ss(1.2f, 1.0f, 0.8f);
+  add_medium(a, "fog", fog_box(sa, ss, 0.3, {-0.7, -0.7, -0.7}, {0.7, 0.7, 0.7}));
+  add_medium(b, "grid", constant_grid_box(sa, ss, 0.3, {-0.7, -0.7, -0.7}, 1.4));
+  expect_same_tiles(build_scene(a), build_scene(b));
+}
+
+TEST(GridMedium, MajorantGridAndGlobalMajorantAgree) {
+  SceneDescription d = lit_box_scene();
+  VdbMediumDesc v;
+  v.file = "blob";
+  const int n = 33;
+  v.density =
+      std::make_shared<FunctionGrid>(n, 1.6 / (n - 1), Vec3d(-0.8, -0.8, -0.8), [n](const Vec3& p) {
+        const Vec3 c = p / float(n - 1) - Vec3(0.5f);
+        return std::max(0.f, 1.f - 4.f * length_squared(c)) * (1.f + 0.5f * std::sin(12.f * c.x));
+      });
+  v.sigma_s = Rgb(3.f);
+  v.sigma_a = Rgb(0.5f);
+  add_medium(d, "blob", v);
+  SceneBuildOptions global;
+  global.media.majorant_grid = false;
+  SceneBuildOptions fine;
+  fine.media.majorant_cell_voxels = 4;
+  expect_same_tiles(build_scene(d, fine), build_scene(d, global));
+}
+
+// ---- phase function sampling ---------------------------------------------------
+
+class HgChi2 : public ::testing::TestWithParam<float> {};
+
+TEST_P(HgChi2, SamplingMatchesPdf) {
+  const HgPhase phase{GetParam()};
+  const Vec3 wo = normalize(Vec3(0.3f, -0.4f, 0.8f));
+  Sampler s(uint64_t(31));
+  stats::Chi2Options opt;
+  opt.pole = -wo;
+  opt.theta_bins = 30;
+  const auto r =
+      stats::chi2_test([&]() -> std::optional<Vec3> { return phase.sample(wo, s.next2()); },
+                       [&](const Vec3& wi) -> double { return phase.pdf(wo, wi); }, opt);
+  EXPECT_GT(r.p_value, stats::sidak_alpha(kAlpha, 5)) << r.message;
+  EXPECT_NEAR(r.pdf_integral, 1.0, 1e-3);
+}
+INSTANTIATE_TEST_SUITE_P(SeveralG, HgChi2, ::testing::Values(-0.7f, -0.2f, 0.f, 0.5f, 0.9f));
+
+TEST(HgPhase, MeanCosineIsG) {
+  // E[cos(-wo, wi)] = g for Henyey-Greenstein.
+  for (float g : {-0.6f, 0.f, 0.3f, 0.85f}) {
+    const HgPhase phase{g};
+    const Vec3 wo(0, 0, 1);
+    Sampler s(uint64_t(5));
+    double sum = 0, sum2 = 0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      const double c = dot(-wo, phase.sample(wo, s.next2()));
+      sum += c;
+      sum2 += c * c;
+    }
+    const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+    EXPECT_LT(std::abs(mean - g) / se, sidak_z_critical(kAlpha, 4)) << "g=" << g;
+  }
+}
+
+// ---- stress --------------------------------------------------------------------
+
+bool finite_image(const RenderResult& r) {
+  for (float v : r.image.pixels)
+    if (!std::isfinite(v)) return false;
+  return r.stats.nonfinite_samples == 0;
+}
+
+TEST(VolumeStress, DensityScalesFrom1e3To1e4StayFinite) {
+  for (double scale : {1e-3, 1.0, 1e2, 1e4}) {
+    SceneDescription d = lit_box_scene();
+    VdbMediumDesc v = constant_grid_box(Rgb(0.1f), Rgb(1.f), 0.5, {-0.7, -0.7, -0.7}, 1.4);
+    v.density_scale = scale;
+    add_medium(d, "grid", v);
+    RenderOptions o;
+    o.spp = 4;
+    EXPECT_TRUE(finite_image(render(build_scene(d), o))) << "density_scale " << scale;
+  }
+}
+
+TEST(VolumeStress, PurelyAbsorbingCameraInsideAndFarAwayMediaStayFinite) {
+  // sigma_s = 0, unbounded fog around the camera, and the whole scene 1e5 away.
+  SceneDescription d = lit_box_scene();
+  add_medium(d, "absorb", fog_box(Rgb(0.5f), Rgb(0.f), 0, {-0.7, -0.7, -0.7}, {0.7, 0.7, 0.7}));
+  HomogeneousMediumDesc everywhere;
+  everywhere.sigma_s = Rgb(0.05f);
+  add_medium(d, "air", everywhere);
+  RenderOptions o;
+  o.spp = 4;
+  EXPECT_TRUE(finite_image(render(build_scene(d), o)));
+
+  SceneDescription far = lit_box_scene();
+  const Vec3d off{1e5, 2e5, -1e5};
+  far.camera.from = far.camera.from + off;
+  far.camera.to = far.camera.to + off;
+  for (auto& s : far.shapes) std::get<QuadShapeDesc>(s.geometry).corner += off;
+  std::get<PointLightDesc>(far.lights[0].light).position += off;
+  add_medium(far, "fog", fog_box(Rgb(0.1f), Rgb(1.f), 0.2, off - Vec3d(0.7), off + Vec3d(0.7)));
+  add_medium(far, "grid", constant_grid_box(Rgb(0.1f), Rgb(1.f), 0.0, off - Vec3d(0.5), 1.0));
+  const RenderResult r = render(build_scene(far), o);
+  EXPECT_TRUE(finite_image(r));
+  double sum = 0;
+  for (float v : r.image.pixels) sum += v;
+  EXPECT_GT(sum, 0.0);
+}
+
+}  // namespace
+}  // namespace vesper::test
