@@ -145,7 +145,7 @@ DenseVolume generate_cloud(const CloudParams& p) {
           const float dx = x - s.x, dy = y - s.y, dz = z - s.z;
           d = smooth_min(d, std::sqrt(dx * dx + dy * dy + dz * dz) - s.r, p.smoothness);
         }
-        d = -smooth_min(-d, -(y - base_y), 0.05f);  // smooth max: flatten the bottom
+        d = -smooth_min(-d, y - base_y, 0.05f);  // smooth max with the half-space y > base_y: flat bottom
         if (d > 1.5f * p.noise_amplitude + p.density_band) continue;  // far outside: |fbm| <~ 1.05 cannot reach
         // Displacement is weaker at the flat base (cumulus bottoms are smooth).
         const float base_fade = std::clamp((y - base_y) / 0.15f, 0.25f, 1.0f);

@@ -48,7 +48,7 @@ std::string grid_listing(openvdb::io::File& f) {
   std::string s;
   for (const auto& g : *grids) {
     if (!s.empty()) s += ", ";
-    s += "'" + g->getName() + "' (" + g->valueType() + ")";
+    s += g->getName() + " (" + g->valueType() + ")";
   }
   return s.empty() ? "no grids" : s;
 }
@@ -108,7 +108,8 @@ std::vector<std::string> list_vdb_grids(const fs::path& file) {
   auto f = open_file(file);
   std::vector<std::string> out;
   try {
-    for (const auto& g : *f->readAllGridMetadata()) out.push_back(g->getName() + ": " + g->valueType());
+    const openvdb::GridPtrVecPtr grids = f->readAllGridMetadata();  // keep alive: range-for over *temp dangles
+    for (const auto& g : *grids) out.push_back(g->getName() + ": " + g->valueType());
   } catch (const std::exception& e) {
     throw VdbError(quoted(file) + ": cannot read grid metadata: " + e.what());
   }
@@ -119,7 +120,8 @@ std::vector<VdbGridInfo> describe_vdb_grids(const fs::path& file) {
   auto f = open_file(file);
   std::vector<VdbGridInfo> out;
   try {
-    for (const auto& meta : *f->readAllGridMetadata()) {
+    const openvdb::GridPtrVecPtr metas = f->readAllGridMetadata();
+    for (const auto& meta : *metas) {
       openvdb::GridBase::Ptr g = f->readGrid(meta->getName());
       VdbGridInfo info;
       info.name = g->getName();
