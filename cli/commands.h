@@ -20,4 +20,23 @@ struct RenderCommandOptions {
 };
 int run_render(const RenderCommandOptions& options);
 
+// vesper vdb cloud: a procedural cloud written as an OpenVDB fog volume.
+struct VdbCloudOptions {
+  std::string output;
+  int resolution = 128;
+  unsigned long long seed = 1;
+  std::optional<double> voxel_size;  // default: 2.56 / resolution (same world size)
+  std::optional<float> noise_amplitude;
+  std::optional<int> noise_octaves;
+  std::string grid = "density";
+  bool quiet = false;
+};
+int run_vdb_cloud(const VdbCloudOptions& options);
+
+// vesper vdb info: the grids of a .vdb file (type, active voxels, bbox, range).
+struct VdbInfoOptions {
+  std::string file;
+};
+int run_vdb_info(const VdbInfoOptions& options);
+
 }  // namespace vesper::cli

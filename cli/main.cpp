@@ -30,9 +30,28 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   r->add_flag("-q,--quiet", render.quiet, "Print only the output path");
 
+  vesper::cli::VdbCloudOptions vdb_cloud;
+  vesper::cli::VdbInfoOptions vdb_info;
+  auto* vdb = app.add_subcommand("vdb", "OpenVDB volumes: generate a procedural cloud, inspect a file");
+  vdb->require_subcommand(1);
+  auto* vc = vdb->add_subcommand("cloud", "Write a procedural cumulus cloud as an OpenVDB fog volume");
+  vc->add_option("-o,--output", vdb_cloud.output, "Output .vdb path")->required();
+  vc->add_option("--resolution", vdb_cloud.resolution, "Voxels across (height is half)")->check(CLI::Range(8, 1024));
+  vc->add_option("--seed", vdb_cloud.seed, "Random seed of the sphere cluster and the noise");
+  vc->add_option("--voxel-size", vdb_cloud.voxel_size, "World units per voxel (default 2.56/resolution)")
+      ->check(CLI::PositiveNumber);
+  vc->add_option("--noise-amplitude", vdb_cloud.noise_amplitude, "fBm displacement (cloud half-widths, 0..0.3)");
+  vc->add_option("--noise-octaves", vdb_cloud.noise_octaves, "fBm octaves (0..12)");
+  vc->add_option("--grid", vdb_cloud.grid, "Grid name (default density)");
+  vc->add_flag("-q,--quiet", vdb_cloud.quiet, "Print only the output path");
+  auto* vi = vdb->add_subcommand("info", "List the grids of a .vdb file: type, active voxels, bbox, value range");
+  vi->add_option("file", vdb_info.file, ".vdb file")->required();
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (r->parsed()) return vesper::cli::run_render(render);
+    if (vc->parsed()) return vesper::cli::run_vdb_cloud(vdb_cloud);
+    if (vi->parsed()) return vesper::cli::run_vdb_info(vdb_info);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

@@ -115,11 +115,12 @@ DenseVolume generate_cloud(const CloudParams& p) {
   // Normalised cloud space: x, z in [-1, 1] across the volume, y in [-0.25, 0.75]
   // (the volume is half as tall as it is wide), the flat base at y = -0.12.
   SplitMix rng{p.seed ^ 0xC10D5EEDull};
-  std::vector<Sphere> spheres{{0.0f, 0.08f, 0.0f, 0.36f}};
+  // A big central puff and smaller ones around it, higher towards the middle.
+  std::vector<Sphere> spheres{{0.0f, 0.1f, 0.0f, 0.3f}};
   for (int s = 1; s < p.spheres; ++s) {
-    const double ang = rng.uniform(0, 2 * M_PI), rad = 0.38 * std::sqrt(rng.uniform());
-    const float r = float(rng.uniform(0.14, 0.28)) * float(1.0 - 0.6 * rad);  // smaller puffs further out
-    spheres.push_back({float(rad * std::cos(ang)) * 1.1f, float(rng.uniform(-0.05, 0.22)) + 0.1f * float(0.38 - rad),
+    const double ang = rng.uniform(0, 2 * M_PI), rad = 0.5 * std::sqrt(rng.uniform());
+    const float r = float(rng.uniform(0.12, 0.24)) * float(1.0 - 0.6 * rad);  // smaller puffs further out
+    spheres.push_back({float(rad * std::cos(ang)) * 1.2f, float(rng.uniform(-0.05, 0.2)) + 0.15f * float(0.5 - rad),
                        float(rad * std::sin(ang)) * 0.9f, r + 0.06f});
   }
   const float base_y = -0.12f;

@@ -16,7 +16,7 @@ struct CloudParams {
   float noise_amplitude = 0.08;  // SDF displacement, in units of the cloud half-width
   int noise_octaves = 5;
   float noise_frequency = 4.0f;  // base fBm frequency, per cloud half-width
-  int spheres = 9;               // including the central one
+  int spheres = 12;              // including the central one
   float smoothness = 0.12f;      // polynomial smooth-min k, in cloud half-widths
   float density_band = 0.06f;    // inside distance over which density rises 0 -> 1
 };
