@@ -1,5 +1,5 @@
 // load_scene / parse_scene: the top level of `vesper-scene/1` plus camera,
-// film, render and materials. Shapes, lights and transforms have their own files.
+// film, render and materials. Shapes, lights, media and transforms have their own files.
 #include "renderer/scene/scene_loader.h"
 
 #include <climits>
@@ -280,7 +280,8 @@ SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::p
   if (!format.json().is_string() || format.json().get<std::string>() != kFormat) {
     format.fail("expected \"" + std::string(kFormat) + "\", got " + describe_json(format.json()));
   }
-  root.allow_keys({"format", "camera", "film", "render", "materials", "shapes", "lights"});
+  root.allow_keys(
+      {"format", "camera", "film", "render", "materials", "shapes", "lights", "media"});
 
   SceneDescription scene;
   scene.file = file;
@@ -316,6 +317,16 @@ SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::p
         environment = i;
       }
       scene.lights.push_back(parse_light(lights->element(i), ctx));
+    }
+  }
+
+  // nlohmann's objects are sorted by key, so media come in name order (like
+  // materials); the order does not matter since overlapping media add.
+  if (const auto media = root.optional_child("media")) {
+    media->expect_object();
+    for (const auto& [name, value] : media->json().items()) {
+      scene.media.push_back(
+          parse_medium(JsonReader(value, ctx.file, media->key_path(name)), name, ctx));
     }
   }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Internal to the scene loader: the pieces of parse_scene that live in their
-// own files (shapes, lights, transforms). Not a public header.
+// own files (shapes, lights, media, transforms). Not a public header.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -14,7 +14,7 @@ struct SceneParseContext {
   std::string file;                // the scene file, for messages
   std::filesystem::path base_dir;  // relative paths resolve against this
   std::vector<std::string> material_names;
-  std::vector<std::filesystem::path> referenced_files;  // meshes and images, for the hash
+  std::vector<std::filesystem::path> referenced_files;  // meshes, images and .vdb files, for the hash
 
   std::filesystem::path resolve(const std::string& relative) const;
   // Index of the material named by `key`; the error lists the known names.
@@ -28,5 +28,7 @@ Transform compose(const Transform& a, const Transform& b);
 
 ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx);
 LightDesc parse_light(JsonReader node, SceneParseContext& ctx);
+// One entry of "media" (`name` is its key); loads and validates .vdb grids.
+MediumDesc parse_medium(JsonReader node, const std::string& name, SceneParseContext& ctx);
 
 }  // namespace vesper

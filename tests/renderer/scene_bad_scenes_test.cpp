@@ -69,6 +69,17 @@ const BadScene kBadScenes[] = {
     {"conductor_eta_zero.json", "/materials/gold/eta/0", "expected a positive number, got 0"},
     {"top_level_array.json", "/", "expected an object, got an array"},
     {"empty_file.json", "line 1, column 1", "invalid JSON"},
+    {"medium_unknown_type.json", "/media/fog/type", "expected one of \"homogeneous\", \"vdb\", got string \"heterogeneous\""},
+    {"medium_g_one.json", "/media/fog/g", "expected a number in (-1, 1), got 1"},
+    {"medium_sigma_s_negative.json", "/media/fog/sigma_s/1", "expected a non-negative number, got -0.5"},
+    {"medium_sigma_s_missing.json", "/media/fog", "missing required key 'sigma_s'"},
+    {"medium_bounds_min_not_below_max.json", "/media/fog/bounds", "expected min < max on every axis, got min.y = 2 and max.y = 2"},
+    {"medium_vdb_missing_file.json", "/media/smoke/file", "VDB file not found: '" VESPER_TEST_DATA_DIR "/bad_scenes/volumes/no_such_smoke.vdb'"},
+    {"medium_emission_scale_without_grid.json", "/media/smoke/emission_scale", "emission_scale > 0 needs 'emission_grid'"},
+    {"medium_unknown_key.json", "/media/fog/sigma_t", "unknown key 'sigma_t' (expected one of: type, sigma_a, sigma_s, g, bounds)"},
+    {"medium_density_scale_negative.json", "/media/smoke/density_scale", "expected a non-negative number, got -2"},
+    {"medium_empty_name.json", "/media/: ", "expected a non-empty medium name"},
+    {"media_not_object.json", "/media", "expected an object, got an array of 1 elements"},
 };
 // clang-format on
 

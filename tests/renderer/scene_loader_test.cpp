@@ -1,5 +1,5 @@
 // The scene loader on valid input: field values, defaults, meshes from files,
-// transform maths, environment images, the content hash.
+// transform maths, environment images, media (homogeneous and OpenVDB), the content hash.
 #include <unistd.h>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +13,7 @@
 
 #include "renderer/scene/environment_image.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/volume/vdb_io.h"
 
 namespace vesper {
 namespace {
@@ -136,6 +137,7 @@ TEST(SceneLoader, Defaults) {
   EXPECT_TRUE(s.render.aovs.empty());
   EXPECT_TRUE(s.shapes.empty());
   EXPECT_TRUE(s.lights.empty());  // a scene without lights is allowed
+  EXPECT_TRUE(s.media.empty());   // media are optional
 }
 
 TEST(SceneLoader, ErrorMessageFormat) {
@@ -399,6 +401,233 @@ TEST(Environment, RejectsNonFiniteAndNegativePixels) {
       EXPECT_NE(what.find(c.name), std::string::npos) << what;
     }
   }
+}
+
+// ---- Media ----------------------------------------------------------------
+
+TEST(Media, HomogeneousValuesDefaultsAndBounds) {
+  json doc = minimal_scene();
+  doc["media"] = json::parse(R"({
+    "haze": {"type": "homogeneous", "sigma_s": [0.5, 0.25, 0]},
+    "fog": {"type": "homogeneous", "sigma_a": [0.1, 0.2, 0.3], "sigma_s": [1, 2, 3], "g": -0.3,
+            "bounds": {"min": [-1, 0, -2], "max": [1, 0.5, 2]}}})");
+  const SceneDescription s = parse_scene(doc, "s.json");
+  ASSERT_EQ(s.media.size(), 2u);
+  // Sorted by name, whatever the order in the file.
+  EXPECT_EQ(s.media[0].name, "fog");
+  EXPECT_EQ(s.media[1].name, "haze");
+
+  const auto& fog = std::get<HomogeneousMediumDesc>(s.media[0].medium);
+  EXPECT_EQ(fog.sigma_a, Rgb(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(fog.sigma_s, Rgb(1.f, 2.f, 3.f));
+  EXPECT_EQ(fog.g, -0.3);
+  ASSERT_TRUE(fog.bounds.has_value());
+  expect_near(fog.bounds->min, {-1, 0, -2});
+  expect_near(fog.bounds->max, {1, 0.5, 2});
+
+  const auto& haze = std::get<HomogeneousMediumDesc>(s.media[1].medium);
+  EXPECT_EQ(haze.sigma_a, Rgb(0.f));  // default: no absorption
+  EXPECT_EQ(haze.sigma_s, Rgb(0.5f, 0.25f, 0.f));
+  EXPECT_EQ(haze.g, 0);
+  EXPECT_FALSE(haze.bounds.has_value());  // fills the whole scene
+}
+
+TEST(Media, EmptyMediaObjectAndExtremeAsymmetry) {
+  json doc = minimal_scene();
+  doc["media"] = json::object();
+  EXPECT_TRUE(parse_scene(doc, "s.json").media.empty());
+  doc["media"] = json::parse(R"({"f": {"type": "homogeneous", "sigma_s": [0, 0, 0], "g": 0.999}})");
+  EXPECT_EQ(std::get<HomogeneousMediumDesc>(parse_scene(doc, "s.json").media[0].medium).g, 0.999);
+  for (double g : {-1.0, 1.0, 1.5}) {
+    doc["media"]["f"]["g"] = g;
+    try {
+      parse_scene(doc, "s.json");
+      ADD_FAILURE() << "accepted g = " << g;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.json_path(), "/media/f/g");
+    }
+  }
+}
+
+TEST(Media, MediumNamesAreEscapedInPaths) {
+  json doc = minimal_scene();
+  doc["media"] = json::parse(R"({"a/b": {"type": "homogeneous", "sigma_s": [1, 1, 1], "g": 2}})");
+  try {
+    parse_scene(doc, "s.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.json_path(), "/media/a~1b/g");
+  }
+}
+
+// A small fog volume: a 4x3x2 block of voxels with density 0.5 + i / 8.
+DenseVolume test_volume(double voxel_size = 0.25) {
+  DenseVolume v;
+  v.nx = 4, v.ny = 3, v.nz = 2;
+  for (int k = 0; k < v.nz; ++k) {
+    for (int j = 0; j < v.ny; ++j) {
+      for (int i = 0; i < v.nx; ++i) v.values.push_back(0.5f + float(i) / 8.f);
+    }
+  }
+  v.voxel_size = voxel_size;
+  v.origin = {1, 2, 3};
+  return v;
+}
+
+SceneError expect_scene_error(const fs::path& file) {
+  try {
+    load_scene(file);
+  } catch (const SceneError& e) {
+    return e;
+  }
+  ADD_FAILURE() << file << " was accepted";
+  return SceneError("", "", "");
+}
+
+TEST(Media, VdbValuesDefaultsAndResolvedPath) {
+  TempDir dir;
+  fs::create_directories(dir.path() / "vol");
+  write_vdb_fog_volume(test_volume(), "density", dir.path() / "vol" / "block.vdb");
+  json doc = minimal_scene();
+  doc["media"] = json::parse(R"({
+    "smoke": {"type": "vdb", "file": "vol/block.vdb"},
+    "tuned": {"type": "vdb", "file": "vol/block.vdb", "grid": "density", "density_scale": 2.5,
+              "sigma_a": [0.1, 0.2, 0.3], "sigma_s": [4, 5, 6], "g": 0.7,
+              "transform": {"translate": [10, 0, 0], "scale": 2},
+              "emission_grid": "density", "emission_scale": 3, "emission_color": [1, 0.5, 0.25]}})");
+  write_text(dir.path() / "s.json", doc.dump());
+  const SceneDescription s = load_scene(dir.path() / "s.json");
+  ASSERT_EQ(s.media.size(), 2u);
+
+  const auto& smoke = std::get<VdbMediumDesc>(s.media[0].medium);
+  EXPECT_EQ(s.media[0].name, "smoke");
+  EXPECT_EQ(fs::path(smoke.file), dir.path() / "vol" / "block.vdb");
+  EXPECT_EQ(smoke.grid, "density");
+  ASSERT_NE(smoke.density, nullptr);
+  EXPECT_NEAR(smoke.density->voxel(3, 0, 0), 0.875f, 1e-6f);
+  EXPECT_NEAR(smoke.density->max_value(), 0.875f, 1e-6f);
+  EXPECT_EQ(smoke.density_scale, 1);
+  EXPECT_EQ(smoke.sigma_a, Rgb(0.f));
+  EXPECT_EQ(smoke.sigma_s, Rgb(1.f));
+  EXPECT_EQ(smoke.g, 0);
+  expect_near(smoke.transform.apply_point({1, 2, 3}), {1, 2, 3});  // identity
+  EXPECT_TRUE(smoke.emission_grid.empty());
+  EXPECT_EQ(smoke.emission, nullptr);
+  EXPECT_EQ(smoke.emission_scale, 0);
+  EXPECT_EQ(smoke.emission_color, Rgb(1.f));
+
+  const auto& tuned = std::get<VdbMediumDesc>(s.media[1].medium);
+  EXPECT_EQ(tuned.density_scale, 2.5);
+  EXPECT_EQ(tuned.sigma_a, Rgb(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(tuned.sigma_s, Rgb(4.f, 5.f, 6.f));
+  EXPECT_EQ(tuned.g, 0.7);
+  ASSERT_NE(tuned.emission, nullptr);
+  EXPECT_EQ(tuned.emission_grid, "density");
+  EXPECT_EQ(tuned.emission_scale, 3);
+  EXPECT_EQ(tuned.emission_color, Rgb(1.f, 0.5f, 0.25f));
+  // The grid's own index->world map first (voxel 0.25, origin (1,2,3)), then `transform`.
+  const Vec3d grid_world = tuned.density->index_to_world().apply_point({2, 0, 0});
+  expect_near(grid_world, {1.5, 2, 3}, 1e-9);
+  expect_near(tuned.transform.apply_point(grid_world), {13, 4, 6}, 1e-9);
+}
+
+TEST(Media, VdbEmissionScaleZeroWithGridIsAllowed) {
+  TempDir dir;
+  write_vdb_fog_volume(test_volume(), "density", dir.path() / "b.vdb");
+  json doc = minimal_scene();
+  doc["media"] = json::parse(R"({"s": {"type": "vdb", "file": "b.vdb", "emission_grid": "density"}})");
+  write_text(dir.path() / "s.json", doc.dump());
+  const auto& m = std::get<VdbMediumDesc>(load_scene(dir.path() / "s.json").media[0].medium);
+  EXPECT_NE(m.emission, nullptr);
+  EXPECT_EQ(m.emission_scale, 0);
+}
+
+TEST(Media, VdbMissingGridListsTheGridsOfTheFile) {
+  TempDir dir;
+  write_vdb_fog_volume(test_volume(), "density", dir.path() / "b.vdb");
+  json doc = minimal_scene();
+  doc["media"] = json::parse(R"({"smoke": {"type": "vdb", "file": "b.vdb", "grid": "temperature"}})");
+  write_text(dir.path() / "s.json", doc.dump());
+  SceneError e = expect_scene_error(dir.path() / "s.json");
+  EXPECT_EQ(e.file(), (dir.path() / "s.json").string());
+  EXPECT_EQ(e.json_path(), "/media/smoke/grid");
+  EXPECT_NE(e.message().find("temperature"), std::string::npos) << e.what();
+  EXPECT_NE(e.message().find("density"), std::string::npos) << "grids not listed: " << e.what();
+
+  // The default grid name is "density": a file without it fails at /grid too.
+  write_vdb_fog_volume(test_volume(), "smoke", dir.path() / "b.vdb");
+  doc["media"]["smoke"].erase("grid");
+  write_text(dir.path() / "s.json", doc.dump());
+  e = expect_scene_error(dir.path() / "s.json");
+  EXPECT_EQ(e.json_path(), "/media/smoke/grid");
+  EXPECT_NE(e.message().find("smoke"), std::string::npos) << "grids not listed: " << e.what();
+
+  // A missing emission grid is reported at /emission_grid.
+  write_vdb_fog_volume(test_volume(), "density", dir.path() / "b.vdb");
+  doc["media"]["smoke"]["emission_grid"] = "temperature";
+  write_text(dir.path() / "s.json", doc.dump());
+  e = expect_scene_error(dir.path() / "s.json");
+  EXPECT_EQ(e.json_path(), "/media/smoke/emission_grid");
+  EXPECT_NE(e.message().find("density"), std::string::npos) << "grids not listed: " << e.what();
+}
+
+TEST(Media, VdbMissingOrUnreadableFile) {
+  TempDir dir;
+  json doc = minimal_scene();
+  doc["media"] = json::parse(R"({"smoke": {"type": "vdb", "file": "sub/none.vdb"}})");
+  write_text(dir.path() / "s.json", doc.dump());
+  SceneError e = expect_scene_error(dir.path() / "s.json");
+  EXPECT_EQ(e.json_path(), "/media/smoke/file");
+  EXPECT_EQ(e.message(), "VDB file not found: '" + (dir.path() / "sub/none.vdb").string() + "'");
+
+  fs::create_directories(dir.path() / "sub");
+  write_text(dir.path() / "sub/none.vdb", "this is not an OpenVDB file\n");
+  e = expect_scene_error(dir.path() / "s.json");
+  EXPECT_EQ(e.json_path(), "/media/smoke/file");
+  EXPECT_NE(e.message().find("none.vdb"), std::string::npos) << e.what();
+}
+
+TEST(Media, CheapValuesAreValidatedBeforeTheFileIsRead) {
+  json doc = minimal_scene();
+  doc["media"] = json::parse(R"({"smoke": {"type": "vdb", "file": "absent.vdb", "sigma_s": [1, -1, 1]}})");
+  try {
+    parse_scene(doc, "s.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.json_path(), "/media/smoke/sigma_s/1");
+  }
+}
+
+TEST(ContentHash, CoversVdbFiles) {
+  TempDir dir;
+  write_vdb_fog_volume(test_volume(), "density", dir.path() / "b.vdb");
+  json doc = minimal_scene();
+  doc["media"] = json::parse(R"({"smoke": {"type": "vdb", "file": "b.vdb"}})");
+  write_text(dir.path() / "s.json", doc.dump());
+  const std::string h1 = load_scene(dir.path() / "s.json").content_hash;
+  EXPECT_EQ(h1, load_scene(dir.path() / "s.json").content_hash);
+  DenseVolume v = test_volume();
+  v.values[5] = 2.f;
+  write_vdb_fog_volume(v, "density", dir.path() / "b.vdb");
+  EXPECT_NE(h1, load_scene(dir.path() / "s.json").content_hash);
+}
+
+// The shared production smoke (Houdini export, one float grid "density").
+TEST(Media, LoadsTheSharedSmokeVdb) {
+  const fs::path smoke = fs::path(VESPER_SOURCE_DIR) / ".." / "shared" / "data" / "smoke.vdb";
+  if (!fs::exists(smoke)) GTEST_SKIP() << "no " << smoke;
+  json doc = minimal_scene();
+  doc["media"]["smoke"] = {{"type", "vdb"},
+                           {"file", fs::absolute(smoke).lexically_normal().string()},
+                           {"density_scale", 2},
+                           {"transform", {{"scale", 0.01}}}};
+  const SceneDescription s = parse_scene(doc, "/nowhere/s.json");  // absolute file: base dir unused
+  const auto& m = std::get<VdbMediumDesc>(s.media[0].medium);
+  ASSERT_NE(m.density, nullptr);
+  EXPECT_EQ(m.density->name(), "density");
+  EXPECT_GT(m.density->max_value(), 1.f);  // vdb_print: max 5.71
+  EXPECT_FALSE(m.density->active_box().empty());
+  EXPECT_EQ(m.density_scale, 2);
 }
 
 }  // namespace
