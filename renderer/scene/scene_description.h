@@ -166,7 +166,7 @@ struct SceneDescription {
   std::vector<MaterialDesc> materials;
   std::vector<ShapeDesc> shapes;
   std::vector<LightDesc> lights;  // at most one environment light
-  std::vector<MediumDesc> media;  // in file order; overlapping media add their coefficients
+  std::vector<MediumDesc> media;  // sorted by name; overlapping media add their coefficients
   // FNV-1a 64 (16 hex digits) of the canonical JSON text + bytes of referenced files.
   std::string content_hash;
 };

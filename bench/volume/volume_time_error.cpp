@@ -1,0 +1,111 @@
+// Time against error for the volume estimators, measured side by side in one
+// run: each configuration renders the same scene at the same spp, and its
+// relMSE against a high-spp reference (rendered with a different seed) and
+// its time give the equal-error time ratio (time x relMSE, since relMSE ~ 1/spp).
+//
+//   ./build/bench/vesper_volume_bench [--quick]
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "renderer/output/image_metrics.h"
+#include "renderer/render/render.h"
+#include "renderer/scene/scene_loader.h"
+
+using namespace vesper;
+
+namespace {
+
+struct Config {
+  std::string name;
+  bool majorant_grid = true;
+  bool equiangular = true;
+};
+
+struct Measurement {
+  double seconds = 0, relmse = 0,
+         relmse_se = 0;  // relMSE is heavy-tailed: report its standard error
+};
+
+Measurement measure(const SceneDescription& desc, const Config& c, const LayeredImage& reference,
+                    int spp, int repeats) {
+  SceneBuildOptions build;
+  build.media.majorant_grid = c.majorant_grid;
+  const Scene scene = build_scene(desc, build);
+  Measurement m;
+  double sum2 = 0;
+  for (int r = 0; r < repeats; ++r) {
+    RenderOptions o;
+    o.spp = spp;
+    o.seed = 1000 + uint64_t(r);
+    o.equiangular = c.equiangular;
+    const RenderResult res = render(scene, o);
+    m.seconds += res.stats.seconds;
+    const double e = relative_mse(res.image, reference);
+    m.relmse += e;
+    sum2 += e * e;
+  }
+  m.seconds /= repeats;
+  m.relmse /= repeats;
+  if (repeats > 1)
+    m.relmse_se = std::sqrt(std::max(0.0, sum2 / repeats - m.relmse * m.relmse) / (repeats - 1));
+  return m;
+}
+
+void run_scene(const std::string& label, const std::filesystem::path& file,
+               const std::vector<Config>& configs, bool quick) {
+  SceneDescription desc;
+  try {
+    desc = load_scene(file);
+  } catch (const std::exception& e) {
+    std::printf("%s: skipped (%s)\n\n", label.c_str(), e.what());
+    return;
+  }
+  desc.film.width = quick ? 48 : 160;
+  desc.film.height = quick ? 36 : 120;
+  const int ref_spp = quick ? 32 : 1024, spp = quick ? 4 : 16, repeats = quick ? 1 : 8;
+
+  std::printf("%s (%dx%d, reference %d spp, measured at %d spp x %d runs)\n", label.c_str(),
+              desc.film.width, desc.film.height, ref_spp, spp, repeats);
+  RenderOptions ro;
+  ro.spp = ref_spp;
+  ro.seed = 7;
+  const RenderResult ref = render(build_scene(desc), ro);
+  std::printf("  reference: %.1f s\n", ref.stats.seconds);
+  std::printf("  %-36s %9s %19s %14s\n", "configuration", "time [s]", "relMSE (+- se)",
+              "equal-error t");
+  measure(desc, configs[0], ref.image, spp,
+          1);  // warm-up: page in the grid, spin up the thread pool
+  std::vector<Measurement> ms;
+  for (const Config& c : configs) ms.push_back(measure(desc, c, ref.image, spp, repeats));
+  const double base = ms[0].seconds * ms[0].relmse;
+  for (size_t i = 0; i < configs.size(); ++i)
+    std::printf("  %-36s %9.3f %10.4f +- %6.4f %13.2fx\n", configs[i].name.c_str(), ms[i].seconds,
+                ms[i].relmse, ms[i].relmse_se, ms[i].seconds * ms[i].relmse / base);
+  std::printf(
+      "  (equal-error t: time to reach the first row's error, relative to it; lower is "
+      "better)\n\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = std::getenv("VESPER_BENCH_QUICK") != nullptr;
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+  const std::filesystem::path scenes = std::filesystem::path(VESPER_SOURCE_DIR) / "scenes";
+
+  run_scene("fog-shafts (homogeneous fog, spot light)", scenes / "fog-shafts/scene.json",
+            {{"equiangular on", true, true}, {"equiangular off", true, false}}, quick);
+  run_scene("smoke (shared smoke.vdb, quad + point light)", scenes / "smoke/scene.json",
+            {{"majorant grid on, equiangular on", true, true},
+             {"majorant grid off (global majorant)", false, true},
+             {"majorant grid on, equiangular off", true, false}},
+            quick);
+  return 0;
+}
