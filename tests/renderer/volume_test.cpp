@@ -162,6 +162,40 @@ TEST(GridMedium, MajorantGridAndGlobalMajorantAgree) {
   expect_same_tiles(build_scene(d, fine), build_scene(d, global));
 }
 
+// ---- emission ------------------------------------------------------------------
+
+TEST(GridEmission, GlowingSlabMatchesTheEmissionAbsorptionIntegral) {
+  // Camera looks straight through a glowing, absorbing cube of side 2 (no
+  // lights): L = eps / sigma_a * (1 - exp(-sigma_a * 2)) on every pixel that
+  // sees the cube through its front and back faces.
+  const double sigma_a = 0.8, eps = 1.5;
+  SceneDescription d = empty_scene(16, 16, 16, 4);
+  d.camera.from = {0, 0, 10};
+  d.camera.to = {0, 0, 0};
+  d.camera.fov_degrees = 4;  // nearly parallel rays: path length 2 within 0.1%
+  VdbMediumDesc v = constant_grid_box(Rgb(float(sigma_a)), Rgb(0.f), 0, {-1, -1, -1}, 2.0);
+  v.emission = std::make_shared<FunctionGrid>(
+      9, 2.0 / 8, Vec3d(-1, -1, -1), [](const Vec3&) { return 1.f; }, "temperature");
+  v.emission_grid = "temperature";
+  v.emission_scale = eps;
+  v.emission_color = Rgb(1.f, 0.5f, 0.25f);
+  add_medium(d, "glow", v);
+  const Scene scene = build_scene(d);
+  const TileStats st = tile_stats(scene, 12, 16, 4);
+  const double path = 2.0 / std::cos(2.0 * M_PI / 180.0 * std::sqrt(2.0));  // longest corner ray
+  const double lum = 0.2126 + 0.7152 * 0.5 + 0.0722 * 0.25;
+  const double lo = lum * eps / sigma_a * (1 - std::exp(-sigma_a * 2.0));
+  const double hi = lum * eps / sigma_a * (1 - std::exp(-sigma_a * path));
+  const double crit = sidak_t_critical(kAlpha, int(st.mean.size()), st.batches - 1);
+  for (size_t t = 0; t < st.mean.size(); ++t) {
+    const double se = std::max(st.se[t], 1e-9);
+    const double dev =
+        st.mean[t] < lo ? lo - st.mean[t] : (st.mean[t] > hi ? st.mean[t] - hi : 0.0);
+    EXPECT_LT(dev / se, crit) << "tile " << t << " mean " << st.mean[t] << " expected in [" << lo
+                              << ", " << hi << "]";
+  }
+}
+
 // ---- phase function sampling ---------------------------------------------------
 
 class HgChi2 : public ::testing::TestWithParam<float> {};
