@@ -32,29 +32,41 @@ struct Measurement {
          relmse_se = 0;  // relMSE is heavy-tailed: report its standard error
 };
 
-Measurement measure(const SceneDescription& desc, const Config& c, const LayeredImage& reference,
-                    int spp, int repeats) {
-  SceneBuildOptions build;
-  build.media.majorant_grid = c.majorant_grid;
-  const Scene scene = build_scene(desc, build);
-  Measurement m;
-  double sum2 = 0;
-  for (int r = 0; r < repeats; ++r) {
-    RenderOptions o;
-    o.spp = spp;
-    o.seed = 1000 + uint64_t(r);
-    o.equiangular = c.equiangular;
-    const RenderResult res = render(scene, o);
-    m.seconds += res.stats.seconds;
-    const double e = relative_mse(res.image, reference);
-    m.relmse += e;
-    sum2 += e * e;
+// Runs every configuration `repeats` times, interleaved so that machine load
+// drifts affect all of them alike.
+std::vector<Measurement> measure_all(const SceneDescription& desc,
+                                     const std::vector<Config>& configs,
+                                     const LayeredImage& reference, int spp, int repeats) {
+  std::vector<Scene> scenes;
+  for (const Config& c : configs) {
+    SceneBuildOptions build;
+    build.media.majorant_grid = c.majorant_grid;
+    scenes.push_back(build_scene(desc, build));
   }
-  m.seconds /= repeats;
-  m.relmse /= repeats;
-  if (repeats > 1)
-    m.relmse_se = std::sqrt(std::max(0.0, sum2 / repeats - m.relmse * m.relmse) / (repeats - 1));
-  return m;
+  std::vector<Measurement> ms(configs.size());
+  std::vector<double> sum2(configs.size(), 0.0);
+  for (int r = 0; r < repeats; ++r) {
+    for (size_t i = 0; i < configs.size(); ++i) {
+      RenderOptions o;
+      o.spp = spp;
+      o.seed = 1000 + uint64_t(r);
+      o.equiangular = configs[i].equiangular;
+      const RenderResult res = render(scenes[i], o);
+      const double e = relative_mse(res.image, reference);
+      ms[i].seconds += res.stats.seconds;
+      ms[i].relmse += e;
+      sum2[i] += e * e;
+    }
+  }
+  for (size_t i = 0; i < configs.size(); ++i) {
+    Measurement& m = ms[i];
+    m.seconds /= repeats;
+    m.relmse /= repeats;
+    if (repeats > 1)
+      m.relmse_se =
+          std::sqrt(std::max(0.0, sum2[i] / repeats - m.relmse * m.relmse) / (repeats - 1));
+  }
+  return ms;
 }
 
 void run_scene(const std::string& label, const std::filesystem::path& file,
@@ -79,10 +91,8 @@ void run_scene(const std::string& label, const std::filesystem::path& file,
   std::printf("  reference: %.1f s\n", ref.stats.seconds);
   std::printf("  %-36s %9s %19s %14s\n", "configuration", "time [s]", "relMSE (+- se)",
               "equal-error t");
-  measure(desc, configs[0], ref.image, spp,
-          1);  // warm-up: page in the grid, spin up the thread pool
-  std::vector<Measurement> ms;
-  for (const Config& c : configs) ms.push_back(measure(desc, c, ref.image, spp, repeats));
+  measure_all(desc, configs, ref.image, spp, 1);  // warm-up: page in the grid, start the threads
+  const std::vector<Measurement> ms = measure_all(desc, configs, ref.image, spp, repeats);
   const double base = ms[0].seconds * ms[0].relmse;
   for (size_t i = 0; i < configs.size(); ++i)
     std::printf("  %-36s %9.3f %10.4f +- %6.4f %13.2fx\n", configs[i].name.c_str(), ms[i].seconds,
