@@ -2,10 +2,13 @@
 // majorant grid vs global majorant, Henyey-Greenstein sampling, stress.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "chi2.h"
 #include "render_stats.h"
 #include "renderer/integrator/volume_tracking.h"
 #include "renderer/media/henyey_greenstein.h"
+#include "renderer/volume/vdb_io.h"
 #include "scene_fixtures.h"
 #include "test_grids.h"
 
@@ -86,6 +89,48 @@ TEST(Transmittance, RatioTrackingThroughConstantGridMatchesBeerLambert) {
     EXPECT_LT(std::abs(mean - expect) / std::sqrt(var / n), z)
         << "channel " << c << " mean " << mean << " expected " << expect;
   }
+}
+
+TEST(Transmittance, RatioTrackingThroughConstantVdbFileMatchesBeerLambert) {
+  // A real .vdb written and read back through OpenVDB/NanoVDB: density 1 on
+  // voxels 0..n-1 (voxel size h); trilinear blending with the zero background
+  // adds a one-voxel ramp at each face, i.e. half a voxel of optical length
+  // per face, so the optical depth along an axis is sigma_t * (n - 1 + 1) * h.
+  const int n = 12;
+  const double h = 0.1;
+  DenseVolume vol;
+  vol.nx = vol.ny = vol.nz = n;
+  vol.values.assign(size_t(n * n * n), 1.f);
+  vol.voxel_size = h;
+  vol.origin = {0, 0, 0};
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("vesper-tr-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  write_vdb_fog_volume(vol, "density", dir / "c.vdb");
+  VdbMediumDesc v;
+  v.file = (dir / "c.vdb").string();
+  v.density = load_vdb_grid(dir / "c.vdb", "density");
+  v.sigma_a = Rgb(0.5f);
+  v.sigma_s = Rgb(1.0f);
+  std::filesystem::remove_all(dir);
+  SceneDescription d = empty_scene(4, 4, 1, 1);
+  d.camera.from = {0.55, 0.55, -3};
+  d.camera.to = {0.55, 0.55, 0};
+  add_medium(d, "vdb", v);
+  const Scene scene = build_scene(d);
+  const Ray ray{Vec3(0.f), Vec3(0, 0, 1)};  // render space starts at the camera
+  const int samples = 100000;
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < samples; ++i) {
+    Sampler s(uint64_t(3), uint64_t(i), 0);
+    const double t = estimate_transmittance(scene.media, ray, 1e30f, s).r;
+    sum += t;
+    sum2 += t * t;
+  }
+  const double mean = sum / samples, se = std::sqrt((sum2 / samples - mean * mean) / samples);
+  const double expect = std::exp(-1.5 * n * h);
+  EXPECT_LT(std::abs(mean - expect) / se, sidak_z_critical(kAlpha, 1))
+      << "mean " << mean << " expected " << expect;
 }
 
 // ---- furnace ---------------------------------------------------------------
