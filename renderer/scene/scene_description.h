@@ -35,7 +35,22 @@ struct FilmDesc {
   FilterType filter = FilterType::Box;
 };
 
-enum class Aov { Albedo, Normal, Depth };
+// Standard AOVs (render.aovs). The seven light-transport AOVs from Emission on
+// partition the beauty: emission seen directly + {diffuse, specular, volume}
+// x {direct, indirect}, classified by the first scattering event after the
+// camera and by whether the light arrives after one event (direct) or more.
+enum class Aov {
+  Albedo,
+  Normal,
+  Depth,
+  Emission,
+  DiffuseDirect,
+  DiffuseIndirect,
+  SpecularDirect,
+  SpecularIndirect,
+  VolumeDirect,
+  VolumeIndirect
+};
 
 struct RenderDesc {
   int spp = 16;
@@ -157,6 +172,33 @@ struct MediumDesc {
   std::variant<HomogeneousMediumDesc, VdbMediumDesc> medium;
 };
 
+// Which light paths a layer keeps.
+enum class PathSelection { All, Surface, Volume };
+
+// Overrides for a variant layer's own render.
+struct MediumOverride {
+  std::optional<double> density_scale;  // vdb media only
+  std::optional<Rgb> sigma_a, sigma_s;
+  std::optional<double> g;
+  std::optional<bool> enabled;  // false removes the medium from this variant
+};
+struct VariantDesc {
+  std::map<std::string, MediumOverride> media;  // keys name existing media
+  std::optional<std::vector<std::string>> lights;  // active light groups; unset = all lights
+};
+
+// A named layer (`layers` in the scene file): a selection of the beauty's
+// light paths, computed in the beauty's pass, or, with a variant, a separate
+// render of the modified scene. Light groups are lights[].group; lights
+// without a group are in group "default"; emission from media is group
+// "emission".
+struct LayerDesc {
+  std::string name;  // a valid EXR layer name: [A-Za-z0-9_-]+, not an AOV name
+  PathSelection paths = PathSelection::All;
+  std::optional<std::vector<std::string>> lights;  // groups kept; unset = all
+  std::optional<VariantDesc> variant;
+};
+
 struct SceneDescription {
   std::filesystem::path file;  // the scene file, for messages
   CameraDesc camera;
@@ -167,6 +209,7 @@ struct SceneDescription {
   std::vector<ShapeDesc> shapes;
   std::vector<LightDesc> lights;  // at most one environment light
   std::vector<MediumDesc> media;  // sorted by name; overlapping media add their coefficients
+  std::vector<LayerDesc> layers;  // sorted by name
   // FNV-1a 64 (16 hex digits) of the canonical JSON text + bytes of referenced files.
   std::string content_hash;
 };
