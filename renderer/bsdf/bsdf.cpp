@@ -20,6 +20,17 @@ std::optional<BsdfSample> bsdf_sample(const Bsdf& bsdf, const Vec3& wo, float uc
   return std::visit([&](const auto& b) { return bsdf_detail::sample(b, wo, uc, u); }, bsdf);
 }
 
+Rgb bsdf_eval_diffuse(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi) {
+  return std::visit(
+      [&](const auto& b) -> Rgb {
+        using T = std::decay_t<decltype(b)>;
+        if constexpr (std::is_same_v<T, DiffuseBsdf>) return bsdf_detail::eval(b, wo, wi);
+        else if constexpr (std::is_same_v<T, PrincipledBsdf>) return bsdf_detail::eval_diffuse(b, wo, wi);
+        else return Rgb{};
+      },
+      bsdf);
+}
+
 bool bsdf_is_delta(const Bsdf& bsdf) {
   return std::visit([](const auto& b) { return bsdf_detail::is_delta(b); }, bsdf);
 }

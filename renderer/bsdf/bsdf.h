@@ -58,6 +58,10 @@ Rgb bsdf_eval(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi);
 float bsdf_pdf(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi);
 // Samples wi given wo; uc picks a lobe, u samples within it. nullopt = absorbed.
 std::optional<BsdfSample> bsdf_sample(const Bsdf& bsdf, const Vec3& wo, float uc, const Vec2& u);
+// The diffuse lobe's share of bsdf_eval (all of it for diffuse, none for
+// conductor and dielectric, the Burley lobe for principled): splits light
+// into the diffuse and specular AOVs.
+Rgb bsdf_eval_diffuse(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi);
 // True when every lobe is a delta lobe (no light sampling is useful).
 bool bsdf_is_delta(const Bsdf& bsdf);
 // Directional-hemispherical reflectance estimate for the `albedo` AOV.

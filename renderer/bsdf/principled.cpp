@@ -108,6 +108,12 @@ std::optional<BsdfSample> sample(const PrincipledBsdf& b, Vec3 wo, float uc, Vec
   return s;
 }
 
+Rgb eval_diffuse(const PrincipledBsdf& b, Vec3 wo, Vec3 wi) {
+  to_upper(wo, wi);
+  if (!(wo.z > 0.f) || !(wi.z > 0.f)) return {};
+  return diffuse_color(b) * (burley(b, wo, wi) * kInvPi);
+}
+
 Rgb albedo(const PrincipledBsdf& b) {
   const Rgb a = diffuse_color(b) * 0.96f + specular_f0(b);
   return {std::min(a.r, 1.f), std::min(a.g, 1.f), std::min(a.b, 1.f)};

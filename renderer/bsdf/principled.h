@@ -29,6 +29,8 @@ float pdf(const PrincipledBsdf& b, Vec3 wo, Vec3 wi);
 std::optional<BsdfSample> sample(const PrincipledBsdf& b, Vec3 wo, float uc, Vec2 u);
 // Diffuse albedo plus normal-incidence specular reflectance, clamped to 1.
 Rgb albedo(const PrincipledBsdf& b);
+// The Burley diffuse lobe alone (part of eval).
+Rgb eval_diffuse(const PrincipledBsdf& b, Vec3 wo, Vec3 wi);
 // Only when the specular lobe is a delta and the diffuse lobe is black.
 bool is_delta(const PrincipledBsdf& b);
 

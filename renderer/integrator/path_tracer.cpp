@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "renderer/integrator/direct_lighting.h"
 #include "renderer/integrator/equiangular.h"
 #include "renderer/integrator/volume_tracking.h"
 #include "renderer/math/frame.h"
@@ -16,10 +17,21 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 bool is_transmissive(const Bsdf& bsdf) { return std::holds_alternative<DielectricBsdf>(bsdf); }
 
+// Adds a contribution to the pixel and, for layers/AOVs, to the path record.
+struct Contributions {
+  PathResult& result;
+  PathRecord* record;
+  void add(const Rgb& value, int events, int group, bool volume_view = false,
+           const Rgb* diffuse_fraction = nullptr) {
+    result.radiance += value;
+    if (record) record->add(value, events, group, volume_view, diffuse_fraction);
+  }
+};
+
 // Emitted radiance from infinite lights for an escaped ray, MIS-weighted
 // against the BSDF or phase sample that produced it.
-Rgb escaped_radiance(const Scene& scene, const Vec3& dir, bool count_fully, float bsdf_pdf) {
-  Rgb sum;
+void add_escaped_radiance(const Scene& scene, const Vec3& dir, bool count_fully, float scatter_pdf,
+                          const Rgb& throughput, int events, Contributions& out) {
   for (uint32_t li : scene.infinite_lights) {
     const Light& light = scene.lights[li];
     Rgb le;
@@ -33,66 +45,28 @@ Rgb escaped_radiance(const Scene& scene, const Vec3& dir, bool count_fully, floa
     }
     if (le.is_black()) continue;
     const float w =
-        count_fully ? 1.f : power_heuristic(bsdf_pdf, scene.light_sampler.pmf(li) * light_pdf);
-    sum += le * w;
+        count_fully ? 1.f : power_heuristic(scatter_pdf, scene.light_sampler.pmf(li) * light_pdf);
+    out.add(throughput * le * w, events, scene.light_group[li]);
   }
-  return sum;
 }
 
-// Fraction of light arriving along the shadow ray: 0 when a surface blocks
-// it, the media's transmittance otherwise.
-template <bool kMedia>
-Rgb shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& dir, float tmax,
-                         Sampler& sampler, uint32_t& rays) {
-  ++rays;
-  if (scene.accel->occluded(origin, dir, tmax)) return Rgb{};
-  if constexpr (kMedia)
-    return estimate_transmittance(scene.media, Ray{origin, dir, tmax}, tmax, sampler);
-  return Rgb(1.f);
-}
-
-// Position of a point or spot light, for equiangular sampling.
-const Vec3* point_light_position(const Light& light) {
-  if (const auto* pl = std::get_if<PointLight>(&light)) return &pl->position;
-  if (const auto* sl = std::get_if<SpotLight>(&light)) return &sl->position;
-  return nullptr;
-}
-
-struct NoDeltaWeight {
-  float operator()(size_t) const { return 1.f; }
-};
-
-// One light sample for the point p. `eval(wi)` returns {f * |cos| (or phase),
-// scattering pdf}; `delta_weight(light)` is the MIS weight of this strategy
-// for delta lights (1 unless equiangular sampling competes).
-template <bool kMedia, typename Eval, typename DeltaWeight = NoDeltaWeight>
-Rgb sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset_normal, Sampler& sampler,
-                  uint32_t& rays, const Eval& eval, const DeltaWeight& delta_weight = {}) {
-  float pmf = 0.f, u_rest = 0.f;
-  const size_t li = scene.light_sampler.sample(sampler.next1(), &pmf, &u_rest);
-  const Vec2 u_light = sampler.next2();
-  if (pmf <= 0.f) return {};
-  const auto ls = sample_light(scene.lights[li], p, u_light);
-  if (!ls || ls->pdf <= 0.f || ls->radiance.is_black()) return {};
-  const auto [f, scatter_pdf] = eval(ls->wi);
-  if (f.is_black()) return {};
-  Vec3 origin = p;
-  if (offset_normal.x != 0.f || offset_normal.y != 0.f || offset_normal.z != 0.f)
-    origin =
-        offset_ray_origin(p, dot(ls->wi, offset_normal) >= 0.f ? offset_normal : -offset_normal);
-  // Stop short of the light's surface so it does not occlude itself.
-  const float tmax = std::isinf(ls->distance) ? kInfinity : ls->distance * (1.f - 1e-4f);
-  const Rgb tr = shadow_transmittance<kMedia>(scene, origin, ls->wi, tmax, sampler, rays);
-  if (tr.is_black()) return {};
-  const float light_pdf = pmf * ls->pdf;
-  const float w = ls->is_delta ? delta_weight(li) : power_heuristic(light_pdf, scatter_pdf);
-  return f * ls->radiance * tr * (w / light_pdf);
+// Continues the path (Russian roulette); false = terminated.
+bool russian_roulette(int depth, const PathTracerOptions& options, Sampler& sampler,
+                      Rgb& throughput) {
+  if (depth + 1 >= options.rr_start_depth) {
+    const float q = std::max(0.05f, 1.f - throughput.max_component());
+    if (sampler.next1() < q) return false;
+    throughput *= 1.f / (1.f - q);
+  }
+  return throughput.is_finite();
 }
 
 template <bool kMedia>
 PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                  const PathTracerOptions& options) {
   PathResult result;
+  if (options.record) options.record->reset();
+  Contributions out{result, options.record};
   Rgb throughput(1.f);
   Ray ray = camera_ray;
   bool count_emission_fully = true;  // camera ray or delta bounce: no MIS partner
@@ -111,15 +85,17 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     }
 
     if constexpr (kMedia) {
+      const float tmax = hit ? hit->t : kInfinity;
       thread_local std::vector<MajorantSpan> spans;
-      scene.media.majorant_spans(ray, hit ? hit->t : kInfinity, spans);
+      scene.media.majorant_spans(ray, tmax, spans);
+      if (depth == 0 && options.want_camera_transmittance)
+        result.camera_transmittance =
+            estimate_transmittance(scene.media, ray, tmax, sampler).average();
       const bool analytic =
           !spans.empty() &&
           std::all_of(spans.begin(), spans.end(), [](const MajorantSpan& s) { return s.analytic; });
       const bool use_equiangular =
           options.equiangular && analytic && have_lights && depth < options.max_depth;
-      // MIS weight of distance sampling + NEE against equiangular sampling, for delta light li at
-      // t.
       auto equiangular_pdf = [&](size_t li, float t) -> float {
         const Vec3* lp = point_light_position(scene.lights[li]);
         if (!lp) return 0.f;
@@ -151,37 +127,48 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
               const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
               const float w = power_heuristic(pdf_e, pdf_a);
               const Rgb tr = analytic_transmittance(scene.media, spans, ray, t);
-              result.radiance +=
+              const Rgb value =
                   throughput * tr * c.sigma_s * ls->radiance * tr_light * (f * w / (pdf_e * pmf));
+              // At depth 0 this scatter would be the path's first event: a volume one.
+              if (depth == 0 && options.record) {
+                result.radiance += value;
+                options.record->add_as(FirstEvent::Volume, false, scene.light_group[li], value);
+              } else {
+                out.add(value, depth + 1, scene.light_group[li]);
+              }
             }
           }
         }
       }
+      Rgb emitted;
       const FreeFlight ff =
-          sample_free_flight(scene.media, spans, ray, sampler, throughput, result.radiance);
+          sample_free_flight(scene.media, spans, ray, sampler, throughput, emitted);
+      if (!emitted.is_black()) out.add(emitted, depth, scene.emission_group, depth == 0);
       if (ff.event == FlightEvent::Absorbed) break;
       if (ff.event == FlightEvent::Scattered) {
         if (depth >= options.max_depth) break;
+        if (depth == 0 && options.record) options.record->set_first_volume();
         const Vec3 p = ray.origin + ray.dir * ff.t;
         const Vec3 wo = -ray.dir;
         const HgPhase phase{ff.g};
         if (have_lights) {
           auto eval_phase = [&](const Vec3& wi) {
             const float f = phase.eval(wo, wi);
-            return std::pair{Rgb(f), f};
+            return std::tuple{Rgb(f), Rgb{}, f};
           };
+          DirectSample ds;
           if (use_equiangular) {
             const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, ff.t);
             auto delta_weight = [&](size_t li) {
               return power_heuristic(pdf_a, equiangular_pdf(li, ff.t));
             };
-            result.radiance +=
-                throughput * sample_direct<kMedia>(scene, p, Vec3(0.f), sampler, result.rays,
-                                                   eval_phase, delta_weight);
+            ds = sample_direct<kMedia>(scene, p, Vec3(0.f), sampler, result.rays, eval_phase,
+                                       delta_weight);
           } else {
-            result.radiance += throughput * sample_direct<kMedia>(scene, p, Vec3(0.f), sampler,
-                                                                  result.rays, eval_phase);
+            ds = sample_direct<kMedia>(scene, p, Vec3(0.f), sampler, result.rays, eval_phase);
           }
+          if (!ds.value.is_black())
+            out.add(throughput * ds.value, depth + 1, scene.light_group[ds.light]);
         } else {
           sampler.next1();
           sampler.next2();
@@ -190,19 +177,14 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
         prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
         count_emission_fully = false;
         ray = Ray{p, wi};
-        if (depth + 1 >= options.rr_start_depth) {
-          const float q = std::max(0.05f, 1.f - throughput.max_component());
-          if (sampler.next1() < q) break;
-          throughput *= 1.f / (1.f - q);
-        }
-        if (!throughput.is_finite()) break;
+        if (!russian_roulette(depth, options, sampler, throughput)) break;
         continue;
       }
     }
 
     if (!hit) {
-      result.radiance +=
-          throughput * escaped_radiance(scene, ray.dir, count_emission_fully, prev_scatter_pdf);
+      add_escaped_radiance(scene, ray.dir, count_emission_fully, prev_scatter_pdf, throughput,
+                           depth, out);
       break;
     }
 
@@ -217,7 +199,7 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
               scene.light_sampler.pmf(size_t(hit->light)) * ql.pdf(ray.dir, hit->t);
           w = power_heuristic(prev_scatter_pdf, light_pdf);
         }
-        result.radiance += throughput * le * w;
+        out.add(throughput * le * w, depth, scene.light_group[size_t(hit->light)]);
       }
       break;
     }
@@ -235,13 +217,19 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
 
     // Next-event estimation.
     if (have_lights && !bsdf_is_delta(bsdf)) {
-      result.radiance +=
-          throughput *
-          sample_direct<kMedia>(
-              scene, hit->p, hit->n, sampler, result.rays, [&](const Vec3& wi_world) {
-                const Vec3 wi = frame.to_local(wi_world);
-                return std::pair{bsdf_eval(bsdf, wo, wi) * std::abs(wi.z), bsdf_pdf(bsdf, wo, wi)};
-              });
+      const DirectSample ds = sample_direct<kMedia>(
+          scene, hit->p, hit->n, sampler, result.rays, [&](const Vec3& wi_world) {
+            const Vec3 wi = frame.to_local(wi_world);
+            const float cos = std::abs(wi.z);
+            return std::tuple{bsdf_eval(bsdf, wo, wi) * cos,
+                              options.record ? bsdf_eval_diffuse(bsdf, wo, wi) * cos : Rgb{},
+                              bsdf_pdf(bsdf, wo, wi)};
+          });
+      if (!ds.value.is_black()) {
+        const Rgb fraction = safe_ratio(ds.diffuse, ds.value);
+        out.add(throughput * ds.value, depth + 1, scene.light_group[ds.light], false,
+                depth == 0 ? &fraction : nullptr);
+      }
     } else {
       // Keep the sample dimensions aligned whether or not NEE ran.
       sampler.next1();
@@ -253,6 +241,9 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     const Vec2 u = sampler.next2();
     const auto bs = bsdf_sample(bsdf, wo, uc, u);
     if (!bs || bs->pdf <= 0.f || bs->f.is_black()) break;
+    if (depth == 0 && options.record)
+      options.record->set_first_surface(
+          bs->is_specular ? Rgb{} : safe_ratio(bsdf_eval_diffuse(bsdf, wo, bs->wi), bs->f));
     throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
     count_emission_fully = bs->is_specular;
     prev_scatter_pdf = bs->pdf;
@@ -260,13 +251,7 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     const Vec3 wi_world = normalize(frame.to_world(bs->wi));
     const Vec3 n_off = dot(wi_world, hit->n) >= 0.f ? hit->n : -hit->n;
     ray = Ray{offset_ray_origin(hit->p, n_off), wi_world};
-
-    if (depth + 1 >= options.rr_start_depth) {
-      const float q = std::max(0.05f, 1.f - throughput.max_component());
-      if (sampler.next1() < q) break;
-      throughput *= 1.f / (1.f - q);
-    }
-    if (!throughput.is_finite()) break;
+    if (!russian_roulette(depth, options, sampler, throughput)) break;
   }
   return result;
 }

@@ -2,6 +2,7 @@
 // Unidirectional path tracing with next-event estimation and multiple
 // importance sampling (power heuristic) between light and BSDF sampling.
 #include "renderer/core/ray.h"
+#include "renderer/integrator/path_record.h"
 #include "renderer/math/rgb.h"
 #include "renderer/sampling/sampler.h"
 #include "renderer/scene/scene.h"
@@ -16,14 +17,20 @@ struct PathResult {
   Vec3 normal;        // first-hit shading normal, world space, facing the camera
   float depth = 0;    // first-hit distance along the camera ray, scene units; 0 for a miss
   uint32_t rays = 0;  // intersection and occlusion queries traced
+  float camera_transmittance = 1;  // through the media to the first surface (RGB average)
 };
 
 struct PathTracerOptions {
   int max_depth = 8;  // scattering events after the camera vertex
   bool want_aovs = false;
   int rr_start_depth = 3;  // Russian roulette from this many scattering events on
-  bool equiangular =
-      true;  // equiangular sampling toward point/spot lights in homogeneous media (MIS)
+  // Equiangular sampling toward point/spot lights in homogeneous media (MIS).
+  bool equiangular = true;
+  // Layers and transport AOVs: when set, every contribution is also binned
+  // here (reset by trace_path). Null for plain renders.
+  PathRecord* record = nullptr;
+  // Estimate the camera ray's transmittance through the media (layer alpha).
+  bool want_camera_transmittance = false;
 };
 
 PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sampler,

@@ -18,7 +18,7 @@ Rgb exp_rgb(const Rgb& x) { return {std::exp(x.r), std::exp(x.g), std::exp(x.b)}
 }  // namespace
 
 FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                              const Ray& ray, Sampler& sampler, Rgb& throughput, Rgb& radiance) {
+                              const Ray& ray, Sampler& sampler, Rgb& throughput, Rgb& emitted) {
   const bool emissive = media.has_emission();
   for (const MajorantSpan& span : spans) {
     const float sigma_maj = span.sigma_maj;
@@ -30,7 +30,7 @@ FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantS
       const MediumCoefficients c = media.coefficients(p);
       // Collision-integral estimator with a grey majorant: every event's
       // weight is (its coefficient / sigma_maj) / (its probability).
-      if (emissive && !c.emission.is_black()) radiance += throughput * c.emission / sigma_maj;
+      if (emissive && !c.emission.is_black()) emitted += throughput * c.emission / sigma_maj;
       const float p_absorb = c.sigma_a.average() / sigma_maj;
       const float p_scatter = c.sigma_s.average() / sigma_maj;
       const float p_null = std::max(0.f, 1.f - p_absorb - p_scatter);

@@ -19,9 +19,10 @@ struct FreeFlight {
 // Samples the next real collision along ray within [0, tmax). Updates the
 // path throughput with the null-collision weights and adds volume emission
 // (times throughput) to radiance.
-// `spans` are media.majorant_spans(ray, tmax).
+// `spans` are media.majorant_spans(ray, tmax). Volume emission met on the
+// way (times throughput) is added to `emitted`.
 FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                              const Ray& ray, Sampler& sampler, Rgb& throughput, Rgb& radiance);
+                              const Ray& ray, Sampler& sampler, Rgb& throughput, Rgb& emitted);
 
 // For rays whose spans are all analytic (homogeneous media only):
 // transmittance from the ray origin to t, and the density with which

@@ -26,6 +26,11 @@ struct Scene {
   std::vector<Bsdf> materials;
   std::vector<Light> lights;
   std::vector<std::string> light_groups;  // parallel to lights; "" = no group
+  // Light groups for layers: every distinct `group`, then "default" (lights
+  // without a group) if any, then "emission" (media emission), always last.
+  std::vector<std::string> group_names;
+  std::vector<int> light_group;  // parallel to lights: index into group_names
+  int emission_group = 0;
   std::vector<uint32_t> infinite_lights;  // lights a ray that escapes can hit
   LightSampler light_sampler;
   std::unique_ptr<Accel> accel;

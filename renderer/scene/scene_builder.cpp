@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -224,6 +225,20 @@ Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options
         },
         ld.light);
     scene.light_groups.push_back(ld.group);
+  }
+  bool any_ungrouped = false;
+  for (const auto& g : scene.light_groups) {
+    if (g.empty()) any_ungrouped = true;
+    else if (std::find(scene.group_names.begin(), scene.group_names.end(), g) == scene.group_names.end())
+      scene.group_names.push_back(g);
+  }
+  if (any_ungrouped) scene.group_names.push_back("default");
+  scene.group_names.push_back("emission");
+  scene.emission_group = int(scene.group_names.size()) - 1;
+  for (const auto& g : scene.light_groups) {
+    const std::string name = g.empty() ? "default" : g;
+    scene.light_group.push_back(
+        int(std::find(scene.group_names.begin(), scene.group_names.end(), name) - scene.group_names.begin()));
   }
   scene.light_sampler = LightSampler(scene.lights, scene.radius);
   scene.media = build_media(desc, scene.origin, scene.unit_scale, options.media);

@@ -1,0 +1,74 @@
+#pragma once
+// Light sampling helpers shared by surface and volume vertices.
+#include <cmath>
+#include <limits>
+
+#include "renderer/integrator/volume_tracking.h"
+#include "renderer/scene/scene.h"
+
+namespace vesper {
+
+// Fraction of light arriving along the shadow ray: 0 when a surface blocks
+// it, the media's transmittance otherwise.
+template <bool kMedia>
+Rgb shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& dir, float tmax,
+                         Sampler& sampler, uint32_t& rays) {
+  ++rays;
+  if (scene.accel->occluded(origin, dir, tmax)) return Rgb{};
+  if constexpr (kMedia)
+    return estimate_transmittance(scene.media, Ray{origin, dir, tmax}, tmax, sampler);
+  return Rgb(1.f);
+}
+
+// Position of a point or spot light, for equiangular sampling.
+inline const Vec3* point_light_position(const Light& light) {
+  if (const auto* pl = std::get_if<PointLight>(&light)) return &pl->position;
+  if (const auto* sl = std::get_if<SpotLight>(&light)) return &sl->position;
+  return nullptr;
+}
+
+struct NoDeltaWeight {
+  float operator()(size_t) const { return 1.f; }
+};
+
+struct DirectSample {
+  Rgb value;    // contribution, before the path throughput
+  Rgb diffuse;  // the diffuse lobe's share of value (surfaces)
+  size_t light = 0;
+};
+
+// One light sample for the point p. `eval(wi)` returns {f * |cos| (or phase),
+// its diffuse part, scattering pdf}; `delta_weight(light)` is the MIS weight
+// of this strategy for delta lights (1 unless equiangular sampling competes).
+template <bool kMedia, typename Eval, typename DeltaWeight = NoDeltaWeight>
+DirectSample sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset_normal,
+                           Sampler& sampler, uint32_t& rays, const Eval& eval,
+                           const DeltaWeight& delta_weight = {}) {
+  DirectSample out;
+  float pmf = 0.f, u_rest = 0.f;
+  const size_t li = scene.light_sampler.sample(sampler.next1(), &pmf, &u_rest);
+  const Vec2 u_light = sampler.next2();
+  out.light = li;
+  if (pmf <= 0.f) return out;
+  const auto ls = sample_light(scene.lights[li], p, u_light);
+  if (!ls || ls->pdf <= 0.f || ls->radiance.is_black()) return out;
+  const auto [f, f_diffuse, scatter_pdf] = eval(ls->wi);
+  if (f.is_black()) return out;
+  Vec3 origin = p;
+  if (offset_normal.x != 0.f || offset_normal.y != 0.f || offset_normal.z != 0.f)
+    origin =
+        offset_ray_origin(p, dot(ls->wi, offset_normal) >= 0.f ? offset_normal : -offset_normal);
+  // Stop short of the light's surface so it does not occlude itself.
+  const float tmax = std::isinf(ls->distance) ? std::numeric_limits<float>::infinity()
+                                              : ls->distance * (1.f - 1e-4f);
+  const Rgb tr = shadow_transmittance<kMedia>(scene, origin, ls->wi, tmax, sampler, rays);
+  if (tr.is_black()) return out;
+  const float light_pdf = pmf * ls->pdf;
+  const float w = ls->is_delta ? delta_weight(li) : power_heuristic(light_pdf, scatter_pdf);
+  const Rgb light = ls->radiance * tr * (w / light_pdf);
+  out.value = f * light;
+  out.diffuse = f_diffuse * light;
+  return out;
+}
+
+}  // namespace vesper
