@@ -1,5 +1,5 @@
 // load_scene / parse_scene: the top level of `vesper-scene/1` plus camera,
-// film, render and materials. Shapes, lights, media and transforms have their own files.
+// film, render and materials. Shapes, lights, media, layers and transforms have their own files.
 #include "renderer/scene/scene_loader.h"
 
 #include <climits>
@@ -19,7 +19,6 @@ namespace {
 constexpr std::string_view kFormat = "vesper-scene/1";
 constexpr std::string_view kCameraTypes[] = {"perspective"};
 constexpr std::string_view kFilters[] = {"box", "gaussian"};
-constexpr std::string_view kAovs[] = {"albedo", "normal", "depth"};
 constexpr std::string_view kMaterialTypes[] = {"diffuse", "conductor", "dielectric", "principled"};
 
 // FNV-1a 64: the hash only has to tell scenes apart for caching and image
@@ -94,7 +93,7 @@ RenderDesc parse_render(JsonReader node) {
     aovs->expect_array();
     for (size_t i = 0; i < aovs->size(); ++i) {
       const JsonReader e = aovs->element(i);
-      const Aov aov = static_cast<Aov>(e.as_enum(kAovs));
+      const Aov aov = static_cast<Aov>(e.as_enum(kAovNames));
       for (size_t j = 0; j < render.aovs.size(); ++j) {
         if (render.aovs[j] == aov) {
           e.fail("duplicate AOV " + e.json().dump() + " (already at " +
@@ -281,7 +280,7 @@ SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::p
     format.fail("expected \"" + std::string(kFormat) + "\", got " + describe_json(format.json()));
   }
   root.allow_keys(
-      {"format", "camera", "film", "render", "materials", "shapes", "lights", "media"});
+      {"format", "camera", "film", "render", "materials", "shapes", "lights", "media", "layers"});
 
   SceneDescription scene;
   scene.file = file;
@@ -317,6 +316,18 @@ SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::p
         environment = i;
       }
       scene.lights.push_back(parse_light(lights->element(i), ctx));
+      // Layers name these two groups with their own meaning.
+      const std::string& group = scene.lights.back().group;
+      if (group == kDefaultLightGroup) {
+        lights->element(i).fail_key(
+            "group", "expected a group name other than \"default\" (the group of the lights "
+                     "without a 'group': leave the key out), got \"default\"");
+      }
+      if (group == kEmissionLightGroup) {
+        lights->element(i).fail_key(
+            "group", "expected a group name other than \"emission\" (reserved for emission from "
+                     "media), got \"emission\"");
+      }
     }
   }
 
@@ -328,6 +339,11 @@ SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::p
       scene.media.push_back(
           parse_medium(JsonReader(value, ctx.file, media->key_path(name)), name, ctx));
     }
+  }
+
+  // After lights and media: layers name light groups and media.
+  if (const auto layers = root.optional_child("layers")) {
+    scene.layers = parse_layers(*layers, scene.lights, scene.media);
   }
 
   // Canonical text (sorted keys, no whitespace) so that reformatting a scene

@@ -1,7 +1,9 @@
 #pragma once
 // Internal to the scene loader: the pieces of parse_scene that live in their
-// own files (shapes, lights, media, transforms). Not a public header.
+// own files (shapes, lights, media, transforms, layers). Not a public header.
 #include <filesystem>
+#include <iterator>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,18 @@
 #include "renderer/scene/scene_description.h"
 
 namespace vesper {
+
+// JSON names of the standard AOVs (render.aovs), indexed by Aov.
+inline constexpr std::string_view kAovNames[] = {
+    "albedo",         "normal",           "depth",          "emission",
+    "diffuse_direct", "diffuse_indirect", "specular_direct", "specular_indirect",
+    "volume_direct",  "volume_indirect"};
+static_assert(std::size(kAovNames) == size_t(Aov::VolumeIndirect) + 1);
+
+// Light groups with a fixed meaning: the lights without a `group`, and
+// emission from media. Neither may be written as a light's `group`.
+inline constexpr std::string_view kDefaultLightGroup = "default";
+inline constexpr std::string_view kEmissionLightGroup = "emission";
 
 struct SceneParseContext {
   std::string file;                // the scene file, for messages
@@ -30,5 +44,9 @@ ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx);
 LightDesc parse_light(JsonReader node, SceneParseContext& ctx);
 // One entry of "media" (`name` is its key); loads and validates .vdb grids.
 MediumDesc parse_medium(JsonReader node, const std::string& name, SceneParseContext& ctx);
+// The "layers" object, sorted by name; light groups and variant media are
+// checked against the already parsed `lights` and `media`.
+std::vector<LayerDesc> parse_layers(JsonReader node, const std::vector<LightDesc>& lights,
+                                    const std::vector<MediumDesc>& media);
 
 }  // namespace vesper

@@ -1,5 +1,6 @@
 // The scene loader on valid input: field values, defaults, meshes from files,
-// transform maths, environment images, media (homogeneous and OpenVDB), the content hash.
+// transform maths, environment images, media (homogeneous and OpenVDB), layers
+// and AOVs, the content hash.
 #include <unistd.h>
 #include <cmath>
 #include <filesystem>
@@ -628,6 +629,270 @@ TEST(Media, LoadsTheSharedSmokeVdb) {
   EXPECT_GT(m.density->max_value(), 1.f);  // vdb_print: max 5.71
   EXPECT_FALSE(m.density->active_box().empty());
   EXPECT_EQ(m.density_scale, 2);
+}
+
+
+// ---- Layers and AOVs ---------------------------------------------------------
+
+TEST(Aovs, AllTenNamesInRequestOrder) {
+  json doc = minimal_scene();
+  doc["render"]["aovs"] = json::parse(R"(["volume_indirect", "emission", "albedo", "diffuse_direct",
+    "normal", "diffuse_indirect", "specular_direct", "depth", "specular_indirect", "volume_direct"])");
+  EXPECT_EQ(parse_scene(doc, "s.json").render.aovs,
+            (std::vector<Aov>{Aov::VolumeIndirect, Aov::Emission, Aov::Albedo, Aov::DiffuseDirect,
+                              Aov::Normal, Aov::DiffuseIndirect, Aov::SpecularDirect, Aov::Depth,
+                              Aov::SpecularIndirect, Aov::VolumeDirect}));
+}
+
+// Lights in groups "window" and "candles" plus one without a group, and a fog.
+json layered_scene() {
+  json doc = minimal_scene();
+  doc["lights"] = json::parse(R"([
+    {"type": "quad", "corner": [0, 2, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "radiance": [5, 5, 5], "group": "window"},
+    {"type": "point", "position": [1, 1, 0], "intensity": [1, 1, 1], "group": "candles"},
+    {"type": "point", "position": [-1, 1, 0], "intensity": [1, 1, 1], "group": "candles"},
+    {"type": "point", "position": [0, 1, 1], "intensity": [1, 1, 1]}])");
+  doc["media"] = json::parse(R"({"fog": {"type": "homogeneous", "sigma_s": [0.1, 0.1, 0.1]}})");
+  return doc;
+}
+
+SceneError expect_parse_error(const json& doc) {
+  try {
+    parse_scene(doc, "s.json");
+  } catch (const SceneError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "accepted " << doc.dump();
+  return SceneError("", "", "");
+}
+
+TEST(Layers, NoneByDefault) {
+  EXPECT_TRUE(parse_scene(minimal_scene(), "s.json").layers.empty());
+  json doc = minimal_scene();
+  doc["layers"] = json::object();
+  EXPECT_TRUE(parse_scene(doc, "s.json").layers.empty());
+}
+
+TEST(Layers, SelectionsDefaultsAndOrder) {
+  json doc = layered_scene();
+  doc["layers"] = json::parse(R"({
+    "surfaces": {"paths": "surface"},
+    "fog": {"paths": "volume"},
+    "lightrays": {"paths": "volume", "lights": ["window"]},
+    "everything": {},
+    "rest": {"paths": "all", "lights": ["default", "emission", "candles"]}})");
+  const SceneDescription s = parse_scene(doc, "s.json");
+  ASSERT_EQ(s.layers.size(), 5u);
+  // Sorted by name, whatever the order in the file.
+  const std::vector<std::string> names = {"everything", "fog", "lightrays", "rest", "surfaces"};
+  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(s.layers[i].name, names[i]);
+  for (const LayerDesc& l : s.layers) EXPECT_FALSE(l.variant.has_value()) << l.name;
+
+  EXPECT_EQ(s.layers[0].paths, PathSelection::All);  // default
+  EXPECT_FALSE(s.layers[0].lights.has_value());      // default: every group
+  EXPECT_EQ(s.layers[1].paths, PathSelection::Volume);
+  EXPECT_FALSE(s.layers[1].lights.has_value());
+  EXPECT_EQ(s.layers[2].paths, PathSelection::Volume);
+  EXPECT_EQ(s.layers[2].lights, (std::vector<std::string>{"window"}));
+  EXPECT_EQ(s.layers[3].paths, PathSelection::All);
+  EXPECT_EQ(s.layers[3].lights, (std::vector<std::string>{"default", "emission", "candles"}));
+  EXPECT_EQ(s.layers[4].paths, PathSelection::Surface);
+}
+
+TEST(Layers, EmissionGroupIsAlwaysKnownDefaultOnlyWithUngroupedLights) {
+  json doc = minimal_scene();  // no lights, no media
+  doc["layers"] = json::parse(R"({"glow": {"lights": ["emission"]}})");
+  EXPECT_EQ(parse_scene(doc, "s.json").layers[0].lights, (std::vector<std::string>{"emission"}));
+
+  doc["layers"]["glow"]["lights"] = {"default"};
+  SceneError e = expect_parse_error(doc);
+  EXPECT_EQ(e.json_path(), "/layers/glow/lights/0");
+  EXPECT_NE(e.message().find("known groups: emission)"), std::string::npos) << e.what();
+
+  doc["lights"] = json::parse(R"([{"type": "point", "position": [0, 1, 0], "intensity": [1, 1, 1]}])");
+  EXPECT_EQ(parse_scene(doc, "s.json").layers[0].lights, (std::vector<std::string>{"default"}));
+
+  doc["lights"][0]["group"] = "lamp";
+  e = expect_parse_error(doc);
+  EXPECT_EQ(e.message(),
+            "unknown light group \"default\" (known groups: lamp, emission); \"default\" is the "
+            "group of the lights without a 'group', and every light has one");
+}
+
+TEST(Layers, VariantEveryField) {
+  TempDir dir;
+  write_vdb_fog_volume(test_volume(), "density", dir.path() / "b.vdb");
+  json doc = layered_scene();
+  doc["media"]["smoke"] = {{"type", "vdb"}, {"file", "b.vdb"}};
+  doc["layers"] = json::parse(R"({
+    "rays_dense": {"variant": {"media": {"smoke": {"density_scale": 4}}, "lights": ["window"]},
+                   "paths": "volume"},
+    "tuned": {"variant": {"media": {
+                "smoke": {"density_scale": 0, "sigma_a": [0.1, 0.2, 0.3], "sigma_s": [1, 2, 3],
+                          "g": -0.5, "enabled": true},
+                "fog": {"enabled": false, "g": 0.9}}},
+              "lights": ["window", "emission"]},
+    "dark": {"variant": {"lights": []}, "paths": "surface"},
+    "no_fog": {"variant": {"media": {"fog": {"sigma_s": [0, 0, 0]}}},
+               "lights": ["candles"]}})");
+  write_text(dir.path() / "s.json", doc.dump());
+  const SceneDescription s = load_scene(dir.path() / "s.json");
+  ASSERT_EQ(s.layers.size(), 4u);
+
+  const LayerDesc& dark = s.layers[0];
+  EXPECT_EQ(dark.name, "dark");
+  EXPECT_EQ(dark.paths, PathSelection::Surface);
+  ASSERT_TRUE(dark.variant.has_value());
+  EXPECT_TRUE(dark.variant->media.empty());
+  EXPECT_EQ(dark.variant->lights, std::vector<std::string>{});  // no lights at all
+
+  const LayerDesc& no_fog = s.layers[1];
+  EXPECT_EQ(no_fog.name, "no_fog");
+  EXPECT_EQ(no_fog.lights, (std::vector<std::string>{"candles"}));
+  ASSERT_TRUE(no_fog.variant.has_value());
+  EXPECT_FALSE(no_fog.variant->lights.has_value());  // every light
+  ASSERT_EQ(no_fog.variant->media.size(), 1u);
+  const MediumOverride& thin = no_fog.variant->media.at("fog");
+  EXPECT_EQ(thin.sigma_s, Rgb(0.f));
+  EXPECT_FALSE(thin.sigma_a || thin.density_scale || thin.g || thin.enabled);
+
+  const LayerDesc& dense = s.layers[2];
+  EXPECT_EQ(dense.name, "rays_dense");
+  EXPECT_EQ(dense.paths, PathSelection::Volume);
+  EXPECT_FALSE(dense.lights.has_value());
+  ASSERT_TRUE(dense.variant.has_value());
+  EXPECT_EQ(dense.variant->lights, (std::vector<std::string>{"window"}));
+  ASSERT_EQ(dense.variant->media.size(), 1u);
+  EXPECT_EQ(dense.variant->media.at("smoke").density_scale, 4.0);
+
+  const LayerDesc& tuned = s.layers[3];
+  EXPECT_EQ(tuned.name, "tuned");
+  EXPECT_EQ(tuned.paths, PathSelection::All);
+  EXPECT_EQ(tuned.lights, (std::vector<std::string>{"window", "emission"}));
+  ASSERT_TRUE(tuned.variant.has_value());
+  EXPECT_FALSE(tuned.variant->lights.has_value());
+  ASSERT_EQ(tuned.variant->media.size(), 2u);
+  const MediumOverride& smoke = tuned.variant->media.at("smoke");
+  EXPECT_EQ(smoke.density_scale, 0.0);
+  EXPECT_EQ(smoke.sigma_a, Rgb(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(smoke.sigma_s, Rgb(1.f, 2.f, 3.f));
+  EXPECT_EQ(smoke.g, -0.5);
+  EXPECT_EQ(smoke.enabled, true);
+  const MediumOverride& fog = tuned.variant->media.at("fog");
+  EXPECT_EQ(fog.enabled, false);
+  EXPECT_EQ(fog.g, 0.9);
+  EXPECT_FALSE(fog.density_scale || fog.sigma_a || fog.sigma_s);
+}
+
+TEST(Layers, OverrideValuesAreRangeChecked) {
+  struct Case {
+    const char* override_json;
+    const char* path;
+    const char* message;
+  };
+  const Case cases[] = {
+      {R"({"sigma_a": [0, -1, 0]})", "/layers/x/variant/media/fog/sigma_a/1", "expected a non-negative number, got -1"},
+      {R"({"sigma_s": [1, 1]})", "/layers/x/variant/media/fog/sigma_s", "expected an RGB array of 3 numbers"},
+      {R"({"g": 1})", "/layers/x/variant/media/fog/g", "expected a number in (-1, 1), got 1"},
+      {R"({"enabled": 0})", "/layers/x/variant/media/fog/enabled", "expected true or false, got 0"},
+      {R"({"sigma": [1, 1, 1]})", "/layers/x/variant/media/fog/sigma", "unknown key 'sigma' (expected one of: density_scale, sigma_a, sigma_s, g, enabled)"},
+  };
+  for (const Case& c : cases) {
+    json doc = layered_scene();
+    doc["layers"]["x"]["variant"]["media"]["fog"] = json::parse(c.override_json);
+    const SceneError e = expect_parse_error(doc);
+    EXPECT_EQ(e.json_path(), c.path) << c.override_json;
+    EXPECT_NE(e.message().find(c.message), std::string::npos) << e.what();
+  }
+}
+
+TEST(Layers, NegativeDensityScaleOverrideOnVdbIsRejected) {
+  TempDir dir;
+  write_vdb_fog_volume(test_volume(), "density", dir.path() / "b.vdb");
+  json doc = minimal_scene();
+  doc["media"]["smoke"] = {{"type", "vdb"}, {"file", "b.vdb"}};
+  doc["layers"] = json::parse(R"({"x": {"variant": {"media": {"smoke": {"density_scale": -1}}}}})");
+  write_text(dir.path() / "s.json", doc.dump());
+  const SceneError e = expect_scene_error(dir.path() / "s.json");
+  EXPECT_EQ(e.json_path(), "/layers/x/variant/media/smoke/density_scale");
+  EXPECT_EQ(e.message(), "expected a non-negative number, got -1");
+}
+
+TEST(Layers, VariantInASceneWithoutMedia) {
+  json doc = minimal_scene();
+  doc["layers"] = json::parse(R"({"x": {"variant": {"media": {"fog": {"enabled": false}}}}})");
+  const SceneError e = expect_parse_error(doc);
+  EXPECT_EQ(e.json_path(), "/layers/x/variant/media/fog");
+  EXPECT_EQ(e.message(), "unknown medium \"fog\" (the scene has no media)");
+}
+
+TEST(Layers, LayerNames) {
+  for (const char* good : {"fog", "Fog-2", "light_rays", "A", "0", "Albedo", "beauty2", "-"}) {
+    json doc = minimal_scene();
+    doc["layers"][good] = json::object();
+    EXPECT_EQ(parse_scene(doc, "s.json").layers.at(0).name, good);
+  }
+  struct Bad {
+    const char* name;
+    const char* path;
+    const char* message;
+  };
+  const Bad bad[] = {
+      {"", "/layers/", "expected a non-empty layer name"},
+      {"fog.dense", "/layers/fog.dense", "letters, digits, '_' and '-'"},
+      {"fog dense", "/layers/fog dense", "letters, digits, '_' and '-'"},
+      {"a/b", "/layers/a~1b", "got \"a/b\""},
+      {"fög", "/layers/fög", "letters, digits, '_' and '-'"},
+      {"beauty", "/layers/beauty", "got \"beauty\""},
+      {"normal", "/layers/normal", "other than the names of the beauty and the standard AOVs"},
+      {"volume_indirect", "/layers/volume_indirect", "got \"volume_indirect\""},
+      {"emission", "/layers/emission", "got \"emission\""},
+  };
+  for (const Bad& b : bad) {
+    json doc = minimal_scene();
+    doc["layers"][b.name] = json::object();
+    const SceneError e = expect_parse_error(doc);
+    EXPECT_EQ(e.json_path(), b.path) << b.name;
+    EXPECT_NE(e.message().find(b.message), std::string::npos) << e.what();
+  }
+}
+
+TEST(Layers, LayerMustBeAnObjectAndLightsStrings) {
+  json doc = layered_scene();
+  doc["layers"]["fog"] = "volume";
+  SceneError e = expect_parse_error(doc);
+  EXPECT_EQ(e.json_path(), "/layers/fog");
+  EXPECT_EQ(e.message(), "expected an object, got string \"volume\"");
+
+  doc["layers"]["fog"] = json::parse(R"({"lights": "window"})");
+  e = expect_parse_error(doc);
+  EXPECT_EQ(e.json_path(), "/layers/fog/lights");
+  EXPECT_EQ(e.message(), "expected a non-empty array of light group names, got string \"window\"");
+
+  doc["layers"]["fog"] = json::parse(R"({"lights": ["window", 3]})");
+  e = expect_parse_error(doc);
+  EXPECT_EQ(e.json_path(), "/layers/fog/lights/1");
+  EXPECT_EQ(e.message(), "expected a string, got 3");
+
+  doc["layers"]["fog"] = json::parse(R"({"variant": {"lights": ["window", "sun"]}})");
+  e = expect_parse_error(doc);
+  EXPECT_EQ(e.json_path(), "/layers/fog/variant/lights/1");
+  EXPECT_EQ(e.message(),
+            "unknown light group \"sun\" (known groups: candles, window, default, emission)");
+
+  doc["layers"]["fog"] = json::parse(R"({"variant": {"lights": ["window", "window"]}})");
+  e = expect_parse_error(doc);
+  EXPECT_EQ(e.json_path(), "/layers/fog/variant/lights/1");
+}
+
+TEST(Layers, ContentHashCoversLayers) {
+  json doc = layered_scene();
+  const std::string h0 = parse_scene(doc, "s.json").content_hash;
+  doc["layers"]["fog"]["paths"] = "volume";
+  const std::string h1 = parse_scene(doc, "s.json").content_hash;
+  doc["layers"]["fog"]["paths"] = "surface";
+  EXPECT_NE(h0, h1);
+  EXPECT_NE(h1, parse_scene(doc, "s.json").content_hash);
 }
 
 }  // namespace
