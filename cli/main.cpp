@@ -22,7 +22,10 @@ int main(int argc, char** argv) {
   r->add_option("--threads", render.threads, "Worker threads (default: all cores)")
       ->check(CLI::PositiveNumber);
   r->add_option("--seed", render.seed, "Random seed (overrides render.seed)");
-  r->add_option("--aov", render.aovs, "Extra AOVs: comma-separated from albedo,normal,depth");
+  r->add_option(
+      "--aov", render.aovs,
+      "Extra AOVs, comma-separated: albedo, normal, depth, emission, diffuse_direct, "
+      "diffuse_indirect, specular_direct, specular_indirect, volume_direct, volume_indirect");
   r->add_option("--sample-begin", render.sample_begin,
                 "First sample index of this range (for split renders)")
       ->check(CLI::NonNegativeNumber);
@@ -32,19 +35,25 @@ int main(int argc, char** argv) {
 
   vesper::cli::VdbCloudOptions vdb_cloud;
   vesper::cli::VdbInfoOptions vdb_info;
-  auto* vdb = app.add_subcommand("vdb", "OpenVDB volumes: generate a procedural cloud, inspect a file");
+  auto* vdb =
+      app.add_subcommand("vdb", "OpenVDB volumes: generate a procedural cloud, inspect a file");
   vdb->require_subcommand(1);
-  auto* vc = vdb->add_subcommand("cloud", "Write a procedural cumulus cloud as an OpenVDB fog volume");
+  auto* vc =
+      vdb->add_subcommand("cloud", "Write a procedural cumulus cloud as an OpenVDB fog volume");
   vc->add_option("-o,--output", vdb_cloud.output, "Output .vdb path")->required();
-  vc->add_option("--resolution", vdb_cloud.resolution, "Voxels across (height is half)")->check(CLI::Range(8, 1024));
+  vc->add_option("--resolution", vdb_cloud.resolution, "Voxels across (height is half)")
+      ->check(CLI::Range(8, 1024));
   vc->add_option("--seed", vdb_cloud.seed, "Random seed of the sphere cluster and the noise");
-  vc->add_option("--voxel-size", vdb_cloud.voxel_size, "World units per voxel (default 2.56/resolution)")
+  vc->add_option("--voxel-size", vdb_cloud.voxel_size,
+                 "World units per voxel (default 2.56/resolution)")
       ->check(CLI::PositiveNumber);
-  vc->add_option("--noise-amplitude", vdb_cloud.noise_amplitude, "fBm displacement (cloud half-widths, 0..0.3)");
+  vc->add_option("--noise-amplitude", vdb_cloud.noise_amplitude,
+                 "fBm displacement (cloud half-widths, 0..0.3)");
   vc->add_option("--noise-octaves", vdb_cloud.noise_octaves, "fBm octaves (0..12)");
   vc->add_option("--grid", vdb_cloud.grid, "Grid name (default density)");
   vc->add_flag("-q,--quiet", vdb_cloud.quiet, "Print only the output path");
-  auto* vi = vdb->add_subcommand("info", "List the grids of a .vdb file: type, active voxels, bbox, value range");
+  auto* vi = vdb->add_subcommand(
+      "info", "List the grids of a .vdb file: type, active voxels, bbox, value range");
   vi->add_option("file", vdb_info.file, ".vdb file")->required();
 
   CLI11_PARSE(app, argc, argv);

@@ -6,7 +6,8 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "renderer/output/exr_io.h"
-#include "renderer/render/render.h"
+#include "renderer/render/frame.h"
+#include "renderer/scene/aov_names.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace vesper::cli {
@@ -18,17 +19,14 @@ std::vector<Aov> parse_aovs(const std::string& list) {
   while (start <= list.size()) {
     const size_t end = std::min(list.find(',', start), list.size());
     const std::string name = list.substr(start, end - start);
-    Aov a;
-    if (name == "albedo")
-      a = Aov::Albedo;
-    else if (name == "normal")
-      a = Aov::Normal;
-    else if (name == "depth")
-      a = Aov::Depth;
-    else
-      throw std::invalid_argument("--aov: unknown AOV '" + name +
-                                  "' (expected albedo, normal, depth)");
-    if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
+    const std::optional<Aov> a = aov_from_name(name);
+    if (!a) {
+      std::string known;
+      for (const auto n : kAovNames) known += (known.empty() ? "" : ", ") + std::string(n);
+      throw std::invalid_argument("--aov: unknown AOV '" + name + "' (expected one of: " + known +
+                                  ")");
+    }
+    if (std::find(aovs.begin(), aovs.end(), *a) == aovs.end()) aovs.push_back(*a);
     start = end + 1;
   }
   return aovs;
@@ -68,14 +66,13 @@ int run_render(const RenderCommandOptions& o) {
     return 2;
   }
 
-  const Scene scene = build_scene(desc);
   if (!o.quiet)
-    spdlog::info("{}: {}x{}, {} spp, {} primitives, {} lights", o.scene, desc.film.width,
-                 desc.film.height, ro.sample_end.value_or(spp) - ro.sample_begin,
-                 scene.accel->primitive_count(), scene.lights.size());
+    spdlog::info("{}: {}x{}, {} spp, {} shapes, {} lights, {} media, {} layers", o.scene,
+                 desc.film.width, desc.film.height, ro.sample_end.value_or(spp) - ro.sample_begin,
+                 desc.shapes.size(), desc.lights.size(), desc.media.size(), desc.layers.size());
   Progress progress("render");
   if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
-  RenderResult result = render(scene, ro);
+  FrameResult result = render_frame(desc, ro);
   progress.finish();
 
   try {

@@ -11,6 +11,15 @@
 
 namespace vesper {
 
+// A layer computed in the beauty's pass: the contributions of the paths
+// whose first event matches `paths` and whose light group is in `lights`.
+struct LayerSelection {
+  std::string name;
+  PathSelection paths = PathSelection::All;
+  std::optional<std::vector<std::string>> lights;  // group names; unset = all
+  bool alpha = false;  // also write <name>.A = 1 - camera-ray transmittance
+};
+
 struct RenderOptions {
   int threads = 0;                       // 0 = all hardware threads
   std::optional<int> spp;                // overrides render.spp
@@ -21,6 +30,7 @@ struct RenderOptions {
   int sample_begin = 0;
   std::optional<int> sample_end;
   bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
+  std::vector<LayerSelection> layers;  // path-selection layers, same pass as the beauty
   // Called from worker threads after each tile (must be thread-safe).
   std::function<void(size_t tiles_done, size_t tiles_total)> on_progress;
 };

@@ -8,16 +8,12 @@
 #include <vector>
 
 #include "renderer/scene/json_reader.h"
+#include "renderer/scene/aov_names.h"
 #include "renderer/scene/scene_description.h"
 
 namespace vesper {
 
-// JSON names of the standard AOVs (render.aovs), indexed by Aov.
-inline constexpr std::string_view kAovNames[] = {
-    "albedo",         "normal",           "depth",          "emission",
-    "diffuse_direct", "diffuse_indirect", "specular_direct", "specular_indirect",
-    "volume_direct",  "volume_indirect"};
-static_assert(std::size(kAovNames) == size_t(Aov::VolumeIndirect) + 1);
+
 
 // Light groups with a fixed meaning: the lights without a `group`, and
 // emission from media. Neither may be written as a light's `group`.

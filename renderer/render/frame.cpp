@@ -1,0 +1,145 @@
+#include "renderer/render/frame.h"
+
+#include <algorithm>
+#include <atomic>
+
+namespace vesper {
+namespace {
+
+bool group_active(const std::vector<std::string>& active, const std::string& group) {
+  const std::string name = group.empty() ? "default" : group;
+  return std::find(active.begin(), active.end(), name) != active.end();
+}
+
+void switch_off(LightDesc& l) {
+  std::visit(
+      [](auto& g) {
+        using T = std::decay_t<decltype(g)>;
+        if constexpr (std::is_same_v<T, QuadLightDesc>)
+          g.radiance = Rgb{};
+        else if constexpr (std::is_same_v<T, PointLightDesc> || std::is_same_v<T, SpotLightDesc>)
+          g.intensity = Rgb{};
+        else if constexpr (std::is_same_v<T, SunLightDesc>)
+          g.irradiance = Rgb{};
+        else {
+          g.radiance = Rgb{};
+          g.scale = 0;
+        }
+      },
+      l.light);
+}
+
+bool layer_has_alpha(const LayerDesc& layer, const SceneDescription& scene) {
+  return layer.paths != PathSelection::Surface && !scene.media.empty();
+}
+
+// Appends src's channels (all of them) to dst; both have the same size.
+void append_channels(LayeredImage& dst, const LayeredImage& src) {
+  const size_t nd = dst.channel_count(), ns = src.channel_count(), n = nd + ns;
+  std::vector<float> merged(size_t(dst.width) * size_t(dst.height) * n);
+  for (size_t p = 0; p < size_t(dst.width) * size_t(dst.height); ++p) {
+    std::copy_n(&dst.pixels[p * nd], nd, &merged[p * n]);
+    std::copy_n(&src.pixels[p * ns], ns, &merged[p * n + nd]);
+  }
+  dst.pixels = std::move(merged);
+  dst.channels.insert(dst.channels.end(), src.channels.begin(), src.channels.end());
+}
+
+// Keeps only the channels whose names start with prefix + ".".
+LayeredImage select_layer(const LayeredImage& img, const std::string& prefix) {
+  LayeredImage out;
+  out.width = img.width;
+  out.height = img.height;
+  std::vector<size_t> keep;
+  for (size_t c = 0; c < img.channel_count(); ++c)
+    if (img.channels[c].rfind(prefix + ".", 0) == 0) {
+      keep.push_back(c);
+      out.channels.push_back(img.channels[c]);
+    }
+  out.pixels.resize(size_t(img.width) * size_t(img.height) * keep.size());
+  for (size_t p = 0; p < size_t(img.width) * size_t(img.height); ++p)
+    for (size_t k = 0; k < keep.size(); ++k)
+      out.pixels[p * keep.size() + k] = img.pixels[p * img.channel_count() + keep[k]];
+  return out;
+}
+
+}  // namespace
+
+SceneDescription apply_variant(const SceneDescription& desc, const VariantDesc& variant) {
+  SceneDescription d = desc;
+  for (const auto& [name, o] : variant.media) {
+    auto it = std::find_if(d.media.begin(), d.media.end(),
+                           [&](const MediumDesc& m) { return m.name == name; });
+    if (it == d.media.end()) continue;  // the loader rejects unknown names
+    if (o.enabled && !*o.enabled) {
+      d.media.erase(it);
+      continue;
+    }
+    std::visit(
+        [&](auto& m) {
+          if (o.sigma_a) m.sigma_a = *o.sigma_a;
+          if (o.sigma_s) m.sigma_s = *o.sigma_s;
+          if (o.g) m.g = *o.g;
+          if constexpr (std::is_same_v<std::decay_t<decltype(m)>, VdbMediumDesc>)
+            if (o.density_scale) m.density_scale = *o.density_scale;
+        },
+        it->medium);
+  }
+  if (variant.lights) {
+    for (LightDesc& l : d.lights)
+      if (!group_active(*variant.lights, l.group)) switch_off(l);
+    // Media emission is the group "emission": off unless listed.
+    if (!group_active(*variant.lights, "emission"))
+      for (MediumDesc& m : d.media)
+        if (auto* v = std::get_if<VdbMediumDesc>(&m.medium)) v->emission_scale = 0;
+  }
+  d.layers.clear();
+  return d;
+}
+
+FrameResult render_frame(const SceneDescription& desc, const RenderOptions& options) {
+  std::vector<const LayerDesc*> variants;
+  RenderOptions base = options;
+  base.layers.clear();
+  for (const LayerDesc& layer : desc.layers) {
+    if (layer.variant) {
+      variants.push_back(&layer);
+      continue;
+    }
+    base.layers.push_back({layer.name, layer.paths, layer.lights, layer_has_alpha(layer, desc)});
+  }
+
+  // Progress over all passes: each pass has the same number of tiles.
+  const size_t passes = 1 + variants.size();
+  std::atomic<size_t> pass_index{0};
+  auto progress = [&](size_t done, size_t total) {
+    if (options.on_progress) options.on_progress(pass_index * total + done, passes * total);
+  };
+  base.on_progress = progress;
+
+  FrameResult frame;
+  RenderResult beauty = render(build_scene(desc), base);
+  frame.image = std::move(beauty.image);
+  frame.stats = beauty.stats;
+  for (const LayerDesc* layer : variants) {
+    ++pass_index;
+    const SceneDescription vdesc = apply_variant(desc, *layer->variant);
+    RenderOptions vo = options;
+    vo.aovs = std::vector<Aov>{};
+    vo.layers = {{layer->name, layer->paths, layer->lights, layer_has_alpha(*layer, vdesc)}};
+    vo.on_progress = progress;
+    const RenderResult r = render(build_scene(vdesc), vo);
+    append_channels(frame.image, select_layer(r.image, layer->name));
+    frame.stats.seconds += r.stats.seconds;
+    frame.stats.rays += r.stats.rays;
+    frame.stats.camera_samples += r.stats.camera_samples;
+    frame.stats.nonfinite_samples += r.stats.nonfinite_samples;
+    ++frame.passes;
+  }
+  frame.image.metadata["vesper:render_seconds"] = std::to_string(frame.stats.seconds);
+  frame.image.metadata["vesper:nonfinite_samples"] = std::to_string(frame.stats.nonfinite_samples);
+  frame.image.metadata["vesper:passes"] = std::to_string(frame.passes);
+  return frame;
+}
+
+}  // namespace vesper
