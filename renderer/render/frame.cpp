@@ -80,8 +80,12 @@ SceneDescription apply_variant(const SceneDescription& desc, const VariantDesc& 
           if (o.sigma_a) m.sigma_a = *o.sigma_a;
           if (o.sigma_s) m.sigma_s = *o.sigma_s;
           if (o.g) m.g = *o.g;
-          if constexpr (std::is_same_v<std::decay_t<decltype(m)>, VdbMediumDesc>)
+          if constexpr (std::is_same_v<std::decay_t<decltype(m)>, VdbMediumDesc>) {
             if (o.density_scale) m.density_scale = *o.density_scale;
+          } else if (o.density_scale) {
+            m.sigma_a *= float(*o.density_scale);
+            m.sigma_s *= float(*o.density_scale);
+          }
         },
         it->medium);
   }

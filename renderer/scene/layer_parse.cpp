@@ -10,7 +10,8 @@ namespace vesper {
 namespace {
 
 constexpr std::string_view kPathSelections[] = {"all", "surface", "volume"};
-constexpr std::string_view kOverrideKeys[] = {"density_scale", "sigma_a", "sigma_s", "g", "enabled"};
+constexpr std::string_view kOverrideKeys[] = {"density_scale", "sigma_a", "sigma_s", "g",
+                                              "enabled"};
 
 std::string join(const std::vector<std::string>& names) {
   std::string out;
@@ -46,8 +47,8 @@ struct LightGroups {
 // An array of distinct known group names; `allow_empty` for a variant's lights.
 std::vector<std::string> parse_group_list(const JsonReader& node, const LightGroups& groups,
                                           bool allow_empty) {
-  const std::string expected = std::string(allow_empty ? "an array" : "a non-empty array") +
-                               " of light group names";
+  const std::string expected =
+      std::string(allow_empty ? "an array" : "a non-empty array") + " of light group names";
   if (!node.json().is_array() || (!allow_empty && node.size() == 0)) {
     node.fail("expected " + expected + ", got " + describe_json(node.json()) +
               (node.json().is_array() ? " (leave out 'lights' to keep every group)" : ""));
@@ -61,9 +62,11 @@ std::vector<std::string> parse_group_list(const JsonReader& node, const LightGro
              json_pointer_append(node.path(), size_t(it - out.begin())) + ")");
     }
     if (!groups.contains(g)) {
-      std::string message = "unknown light group \"" + g + "\" (known groups: " + join(groups.names) + ")";
+      std::string message =
+          "unknown light group \"" + g + "\" (known groups: " + join(groups.names) + ")";
       if (g == kDefaultLightGroup) {
-        message += "; \"default\" is the group of the lights without a 'group', and every light has one";
+        message +=
+            "; \"default\" is the group of the lights without a 'group', and every light has one";
       }
       e.fail(message);
     }
@@ -72,7 +75,7 @@ std::vector<std::string> parse_group_list(const JsonReader& node, const LightGro
   return out;
 }
 
-MediumOverride parse_override(JsonReader node, const MediumDesc& medium) {
+MediumOverride parse_override(JsonReader node) {
   node.expect_object();
   node.allow_keys({"density_scale", "sigma_a", "sigma_s", "g", "enabled"});
   if (node.json().empty()) {
@@ -82,13 +85,10 @@ MediumOverride parse_override(JsonReader node, const MediumDesc& medium) {
               ", got an empty object (an override without keys changes nothing)");
   }
   MediumOverride o;
-  if (const auto scale = node.optional_child("density_scale")) {
-    if (!std::holds_alternative<VdbMediumDesc>(medium.medium)) {
-      scale->fail("expected density_scale only for a vdb medium, got it for the homogeneous medium \"" +
-                  medium.name + "\" (override its sigma_a and sigma_s instead)");
-    }
+  // On a homogeneous medium density_scale multiplies sigma_a and sigma_s
+  // (after their overrides), as if it were a grid of density 1.
+  if (const auto scale = node.optional_child("density_scale"))
     o.density_scale = scale->as_number(Range::non_negative());
-  }
   if (const auto c = node.optional_child("sigma_a")) o.sigma_a = c->as_rgb(Range::non_negative());
   if (const auto c = node.optional_child("sigma_s")) o.sigma_s = c->as_rgb(Range::non_negative());
   if (const auto c = node.optional_child("g")) o.g = c->as_number(Range::open(-1, 1));
@@ -101,8 +101,9 @@ VariantDesc parse_variant(JsonReader node, const LightGroups& groups,
   node.expect_object();
   node.allow_keys({"media", "lights"});
   if (node.json().empty()) {
-    node.fail("expected 'media' and/or 'lights' in a variant, got an empty object "
-              "(a layer without a variant needs no 'variant' key)");
+    node.fail(
+        "expected 'media' and/or 'lights' in a variant, got an empty object "
+        "(a layer without a variant needs no 'variant' key)");
   }
   VariantDesc v;
   if (const auto overrides = node.optional_child("media")) {
@@ -115,10 +116,11 @@ VariantDesc parse_variant(JsonReader node, const LightGroups& groups,
         std::vector<std::string> names;
         for (const MediumDesc& m : media) names.push_back(m.name);
         o.fail("unknown medium \"" + name + "\" (" +
-               (names.empty() ? std::string("the scene has no media") : "known media: " + join(names)) +
+               (names.empty() ? std::string("the scene has no media")
+                              : "known media: " + join(names)) +
                ")");
       }
-      v.media.emplace(name, parse_override(o, *medium));
+      v.media.emplace(name, parse_override(o));
     }
   }
   if (const auto lights = node.optional_child("lights")) {
@@ -136,11 +138,13 @@ LayerDesc parse_layer(JsonReader node, const std::string& name, const LightGroup
                       const std::vector<MediumDesc>& media) {
   if (name.empty()) node.fail("expected a non-empty layer name");
   if (!std::all_of(name.begin(), name.end(), valid_layer_name_char)) {
-    node.fail("expected a layer name of letters, digits, '_' and '-' (it prefixes the EXR "
-              "channels, as in '<layer>.R'), got \"" + name + "\"");
+    node.fail(
+        "expected a layer name of letters, digits, '_' and '-' (it prefixes the EXR "
+        "channels, as in '<layer>.R'), got \"" +
+        name + "\"");
   }
-  if (name == "beauty" || std::find(std::begin(kAovNames), std::end(kAovNames), name) !=
-                              std::end(kAovNames)) {
+  if (name == "beauty" ||
+      std::find(std::begin(kAovNames), std::end(kAovNames), name) != std::end(kAovNames)) {
     std::string reserved = "beauty";
     for (std::string_view a : kAovNames) reserved += ", " + std::string(a);
     node.fail("expected a layer name other than the names of the beauty and the standard AOVs (" +

@@ -177,7 +177,7 @@ enum class PathSelection { All, Surface, Volume };
 
 // Overrides for a variant layer's own render.
 struct MediumOverride {
-  std::optional<double> density_scale;  // vdb media only
+  std::optional<double> density_scale;  // homogeneous media: multiplies sigma_a and sigma_s
   std::optional<Rgb> sigma_a, sigma_s;
   std::optional<double> g;
   std::optional<bool> enabled;  // false removes the medium from this variant

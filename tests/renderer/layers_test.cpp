@@ -235,6 +235,22 @@ TEST(Layers, VariantDensityOverrideMatchesASceneWithThatDensity) {
   }
 }
 
+TEST(Layers, DensityScaleOnHomogeneousFogScalesItsCoefficients) {
+  SceneDescription d = layered_scene();
+  LayerDesc l = layer("dense", PathSelection::All);
+  VariantDesc v;
+  MediumOverride o;
+  o.density_scale = 3.0;
+  v.media["fog"] = o;
+  l.variant = v;
+  d.layers = {l};
+  const SceneDescription variant = apply_variant(d, *l.variant);
+  const auto& fog = std::get<HomogeneousMediumDesc>(variant.media[0].medium);
+  EXPECT_FLOAT_EQ(fog.sigma_s.g, 1.8f);
+  EXPECT_FLOAT_EQ(fog.sigma_a.g, 0.15f);
+  EXPECT_TRUE(variant.layers.empty());
+}
+
 TEST(Layers, LayerAlphaIsOneMinusCameraTransmittance) {
   // Homogeneous slab in front of a wall: transmittance is analytic and exact.
   SceneDescription d = empty_scene(8, 8, 2, 2);

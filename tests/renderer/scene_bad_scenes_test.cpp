@@ -96,7 +96,6 @@ const BadScene kBadScenes[] = {
     {"layer_empty_variant.json", "/layers/fog/variant", "expected 'media' and/or 'lights' in a variant, got an empty object"},
     {"layer_variant_unknown_medium.json", "/layers/rays_dense/variant/media/smoke", "unknown medium \"smoke\" (known media: fog)"},
     {"layer_empty_medium_override.json", "/layers/thin/variant/media/fog", "expected at least one of density_scale, sigma_a, sigma_s, g, enabled, got an empty object"},
-    {"layer_density_scale_on_homogeneous.json", "/layers/rays_dense/variant/media/fog/density_scale", "expected density_scale only for a vdb medium, got it for the homogeneous medium \"fog\""},
     {"layer_group_off_in_variant.json", "/layers/glow/lights/0", "expected a light group that the variant keeps (window), got \"candles\""},
 };
 // clang-format on
