@@ -1,5 +1,7 @@
 #pragma once
-// The closed set of lights, and the power-proportional choice between them.
+// The closed set of lights, and the choice between them for light sampling.
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <variant>
@@ -42,16 +44,31 @@ inline float light_power(const Light& light, float scene_radius) {
       light);
 }
 
-// Picks a light with probability proportional to its power, so a dim fill
-// light does not take half the shadow rays from the key light.
+// Picks a light with probability half proportional to its power, half
+// uniform. Power alone lets a dim fill light take few shadow rays from the
+// key light, but it also starves small nearby lights (candles) next to a sun
+// whose power is counted over the whole scene even when it only enters
+// through a window; the uniform half bounds every light's share from below.
 class LightSampler {
  public:
   LightSampler() = default;
   LightSampler(const std::vector<Light>& lights, float scene_radius) {
     if (lights.empty()) return;
+    std::vector<float> power;
+    power.reserve(lights.size());
+    double total = 0;
+    for (const auto& l : lights) {
+      const float p = light_power(l, scene_radius);
+      power.push_back(std::isfinite(p) && p > 0.f ? p : 0.f);
+      total += power.back();
+    }
     std::vector<float> w;
     w.reserve(lights.size());
-    for (const auto& l : lights) w.push_back(light_power(l, scene_radius));
+    // Lights that emit nothing (switched off, zero area) get no samples.
+    const size_t emitting =
+        size_t(std::count_if(power.begin(), power.end(), [](float p) { return p > 0.f; }));
+    for (float p : power)
+      w.push_back(p > 0.f ? float(0.5 * p / total) + 0.5f / float(emitting) : 0.f);
     dist_ = Distribution1D(std::move(w));
   }
   bool empty() const { return dist_.size() == 0; }

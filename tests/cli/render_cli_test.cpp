@@ -133,3 +133,27 @@ TEST_F(RenderCli, SampleRangesFromTheCommandLineMergeToTheFullRender) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(RenderCli, NightRoomLayersArePulledOutByNameWithOiiotool) {
+  const fs::path exr = dir_ / "night.exr";
+  const std::string scene = std::string(VESPER_SOURCE_DIR) + "/scenes/night-room/scene.json";
+  const RunResult r = run(scene + " -o " + exr.string() + " --spp 1 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const vesper::LayeredImage img = vesper::read_exr(exr);
+  for (const char* layer : {"fog", "surfaces", "lightrays", "candles", "rays_dense"}) {
+    for (const char* c : {".R", ".G", ".B"})
+      EXPECT_GE(img.channel_index(std::string(layer) + c), 0) << layer << c;
+    const fs::path out = dir_ / (std::string(layer) + ".exr");
+    const std::string cmd = "oiiotool " + exr.string() + " --ch " + layer + ".R," + layer + ".G," +
+                            layer + ".B --chnames R,G,B -o " + out.string() + " >/dev/null 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << layer;
+    EXPECT_TRUE(fs::exists(out)) << layer;
+  }
+  EXPECT_GE(img.channel_index("fog.A"), 0);          // volume layers carry alpha
+  EXPECT_LT(img.channel_index("surfaces.A"), 0);     // surface layers do not
+  EXPECT_EQ(img.metadata.at("vesper:passes"), "2");  // beauty pass + the rays_dense variant
+}
+
+}  // namespace

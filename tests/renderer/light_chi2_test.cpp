@@ -136,3 +136,21 @@ TEST(LightChi2, EnvironmentSampleRadianceMatchesLookup) {
 
 }  // namespace
 }  // namespace vesper
+
+namespace vesper {
+namespace {
+
+TEST(LightSampler, HalfPowerHalfUniformOverEmittingLights) {
+  std::vector<Light> lights;
+  lights.push_back(PointLight{Vec3(0.f), Rgb(100.f)});  // power 400 pi
+  lights.push_back(PointLight{Vec3(1.f), Rgb(1.f)});    // power 4 pi
+  lights.push_back(PointLight{Vec3(2.f), Rgb(0.f)});    // switched off
+  const LightSampler s(lights, 1.f);
+  EXPECT_NEAR(s.pmf(0) + s.pmf(1) + s.pmf(2), 1.0, 1e-6);
+  EXPECT_NEAR(s.pmf(0), 0.5 * 100.0 / 101.0 + 0.25, 1e-6);
+  EXPECT_NEAR(s.pmf(1), 0.5 * 1.0 / 101.0 + 0.25, 1e-6);
+  EXPECT_EQ(s.pmf(2), 0.f);
+}
+
+}  // namespace
+}  // namespace vesper
