@@ -55,13 +55,21 @@ DirectSample sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset
   const auto [f, f_diffuse, scatter_pdf] = eval(ls->wi);
   if (f.is_black()) return out;
   Vec3 origin = p;
+  Vec3 dir = ls->wi;
+  float tmax = std::numeric_limits<float>::infinity();
   if (offset_normal.x != 0.f || offset_normal.y != 0.f || offset_normal.z != 0.f)
     origin =
         offset_ray_origin(p, dot(ls->wi, offset_normal) >= 0.f ? offset_normal : -offset_normal);
-  // Stop short of the light's surface so it does not occlude itself.
-  const float tmax = std::isinf(ls->distance) ? std::numeric_limits<float>::infinity()
-                                              : ls->distance * (1.f - 1e-4f);
-  const Rgb tr = shadow_transmittance<kMedia>(scene, origin, ls->wi, tmax, sampler, rays);
+  if (!std::isinf(ls->distance)) {
+    // Aim from the offset origin at the sampled light point itself, and stop
+    // just short of it so the light's own surface does not occlude it.
+    const Vec3 to_light = p + ls->wi * ls->distance - origin;
+    const float dist = length(to_light);
+    if (!(dist > 0.f)) return out;
+    dir = to_light / dist;
+    tmax = dist * (1.f - 1e-4f);
+  }
+  const Rgb tr = shadow_transmittance<kMedia>(scene, origin, dir, tmax, sampler, rays);
   if (tr.is_black()) return out;
   const float light_pdf = pmf * ls->pdf;
   const float w = ls->is_delta ? delta_weight(li) : power_heuristic(light_pdf, scatter_pdf);
