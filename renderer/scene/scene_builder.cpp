@@ -32,6 +32,12 @@ struct Bounds {
     lo = min(lo, p);
     hi = max(hi, p);
   }
+  void add_parallelogram(const Vec3d& corner, const Vec3d& e1, const Vec3d& e2) {
+    add(corner);
+    add(corner + e1);
+    add(corner + e2);
+    add(corner + e1 + e2);
+  }
   bool empty() const { return lo.x > hi.x; }
 };
 
@@ -43,10 +49,7 @@ Bounds scene_bounds(const SceneDescription& d) {
         [&](const auto& g) {
           using T = std::decay_t<decltype(g)>;
           if constexpr (std::is_same_v<T, QuadShapeDesc>) {
-            b.add(g.corner);
-            b.add(g.corner + g.edge1 + g.edge2);
-            b.add(g.corner + g.edge1);
-            b.add(g.corner + g.edge2);
+            b.add_parallelogram(g.corner, g.edge1, g.edge2);
           } else if constexpr (std::is_same_v<T, SphereShapeDesc>) {
             b.add(g.center - Vec3d(g.radius));
             b.add(g.center + Vec3d(g.radius));
@@ -61,10 +64,7 @@ Bounds scene_bounds(const SceneDescription& d) {
         [&](const auto& g) {
           using T = std::decay_t<decltype(g)>;
           if constexpr (std::is_same_v<T, QuadLightDesc>) {
-            b.add(g.corner);
-            b.add(g.corner + g.edge1 + g.edge2);
-            b.add(g.corner + g.edge1);
-            b.add(g.corner + g.edge2);
+            b.add_parallelogram(g.corner, g.edge1, g.edge2);
           } else if constexpr (std::is_same_v<T, PointLightDesc> ||
                                std::is_same_v<T, SpotLightDesc>) {
             b.add(g.position);
@@ -228,8 +228,10 @@ Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options
   }
   bool any_ungrouped = false;
   for (const auto& g : scene.light_groups) {
-    if (g.empty()) any_ungrouped = true;
-    else if (std::find(scene.group_names.begin(), scene.group_names.end(), g) == scene.group_names.end())
+    if (g.empty())
+      any_ungrouped = true;
+    else if (std::find(scene.group_names.begin(), scene.group_names.end(), g) ==
+             scene.group_names.end())
       scene.group_names.push_back(g);
   }
   if (any_ungrouped) scene.group_names.push_back("default");
@@ -238,7 +240,8 @@ Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options
   for (const auto& g : scene.light_groups) {
     const std::string name = g.empty() ? "default" : g;
     scene.light_group.push_back(
-        int(std::find(scene.group_names.begin(), scene.group_names.end(), name) - scene.group_names.begin()));
+        int(std::find(scene.group_names.begin(), scene.group_names.end(), name) -
+            scene.group_names.begin()));
   }
   scene.light_sampler = LightSampler(scene.lights, scene.radius);
   scene.media = build_media(desc, scene.origin, scene.unit_scale, options.media);
