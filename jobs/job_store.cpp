@@ -1,0 +1,410 @@
+#include "jobs/job_store.h"
+
+#include <random>
+
+#include "jobs/sqlite_db.h"
+
+namespace vesper {
+
+const char* to_string(TaskState s) {
+  switch (s) {
+    case TaskState::Queued:
+      return "queued";
+    case TaskState::Leased:
+      return "leased";
+    case TaskState::Done:
+      return "done";
+    case TaskState::Failed:
+      return "failed";
+    case TaskState::Canceled:
+      return "canceled";
+    case TaskState::Paused:
+      return "paused";
+  }
+  return "?";
+}
+const char* to_string(JobState s) {
+  switch (s) {
+    case JobState::Active:
+      return "active";
+    case JobState::Paused:
+      return "paused";
+    case JobState::Canceled:
+      return "canceled";
+  }
+  return "?";
+}
+
+namespace {
+
+TaskState task_state(const std::string& s) {
+  for (TaskState t : {TaskState::Queued, TaskState::Leased, TaskState::Done, TaskState::Failed,
+                      TaskState::Canceled, TaskState::Paused})
+    if (s == to_string(t)) return t;
+  throw StoreError("unknown task state '" + s + "' in the store");
+}
+JobState job_state(const std::string& s) {
+  for (JobState j : {JobState::Active, JobState::Paused, JobState::Canceled})
+    if (s == to_string(j)) return j;
+  throw StoreError("unknown job state '" + s + "' in the store");
+}
+
+// Schema migrations, applied in order; schema_version counts the applied ones.
+const char* const kMigrations[] = {
+    R"sql(
+CREATE TABLE jobs(
+  id INTEGER PRIMARY KEY, name TEXT NOT NULL, scene TEXT NOT NULL, spp INTEGER NOT NULL,
+  priority INTEGER NOT NULL, max_attempts INTEGER NOT NULL, state TEXT NOT NULL, created REAL NOT NULL);
+CREATE TABLE tasks(
+  id INTEGER PRIMARY KEY, job_id INTEGER NOT NULL REFERENCES jobs(id), frame INTEGER NOT NULL,
+  sample_begin INTEGER NOT NULL, sample_end INTEGER NOT NULL, state TEXT NOT NULL,
+  attempts INTEGER NOT NULL DEFAULT 0, lease_id TEXT, worker TEXT NOT NULL DEFAULT '',
+  lease_expiry REAL, result TEXT NOT NULL DEFAULT '', log TEXT NOT NULL DEFAULT '');
+CREATE INDEX tasks_by_state ON tasks(state, job_id);
+CREATE UNIQUE INDEX tasks_by_lease ON tasks(lease_id) WHERE lease_id IS NOT NULL;
+CREATE TABLE worker_failures(
+  job_id INTEGER NOT NULL, worker TEXT NOT NULL, failures INTEGER NOT NULL, PRIMARY KEY(job_id, worker));
+)sql",
+};
+
+std::string new_lease_id() {
+  thread_local std::mt19937_64 rng{std::random_device{}()};
+  static const char* hex = "0123456789abcdef";
+  std::string id(32, '0');
+  for (int half = 0; half < 2; ++half) {
+    uint64_t v = rng();
+    for (int i = 0; i < 16; ++i, v >>= 4) id[size_t(half * 16 + i)] = hex[v & 15];
+  }
+  return id;
+}
+
+constexpr const char* kTaskColumns =
+    "id, job_id, frame, sample_begin, sample_end, state, attempts, worker, result, log";
+
+Task read_task(const sql::Stmt& s) {
+  Task t;
+  t.id = s.i64(0);
+  t.job_id = s.i64(1);
+  t.frame = int(s.i64(2));
+  t.sample_begin = int(s.i64(3));
+  t.sample_end = int(s.i64(4));
+  t.state = task_state(s.text(5));
+  t.attempts = int(s.i64(6));
+  t.worker = s.text(7);
+  t.result = s.text(8);
+  t.log = s.text(9);
+  return t;
+}
+
+}  // namespace
+
+struct JobStore::Impl {
+  sql::Db db;
+  StoreOptions options;
+  explicit Impl(const std::filesystem::path& file, StoreOptions o)
+      : db(file.string()), options(o) {}
+
+  int version() const {
+    sql::Stmt s(db, "SELECT version FROM schema_version");
+    return s.step() ? int(s.i64(0)) : 0;
+  }
+
+  // Failed attempt bookkeeping shared by fail() and lease expiry.
+  void record_failure(int64_t task_id, int64_t job_id, const std::string& worker,
+                      const std::string& log) {
+    sql::Stmt(
+        db,
+        "UPDATE tasks SET attempts = attempts + 1, lease_id = NULL, lease_expiry = NULL, log = ?2, "
+        "state = CASE WHEN attempts + 1 >= (SELECT max_attempts FROM jobs WHERE id = job_id) "
+        "THEN 'failed' ELSE 'queued' END WHERE id = ?1")
+        .bind(1, task_id)
+        .bind(2, log)
+        .run();
+    if (!worker.empty())
+      sql::Stmt(db,
+                "INSERT INTO worker_failures(job_id, worker, failures) VALUES(?1, ?2, 1) "
+                "ON CONFLICT(job_id, worker) DO UPDATE SET failures = failures + 1")
+          .bind(1, job_id)
+          .bind(2, worker)
+          .run();
+  }
+
+  int expire(double now) {
+    std::vector<std::tuple<int64_t, int64_t, std::string>> expired;
+    {
+      sql::Stmt s(
+          db, "SELECT id, job_id, worker FROM tasks WHERE state = 'leased' AND lease_expiry < ?1");
+      s.bind(1, now);
+      while (s.step()) expired.emplace_back(s.i64(0), s.i64(1), s.text(2));
+    }
+    for (const auto& [id, job, worker] : expired)
+      record_failure(id, job, worker, "lease expired (worker lost)");
+    return int(expired.size());
+  }
+
+  // The current task of a lease id, if the lease is still current.
+  std::optional<Task> leased_task(const std::string& lease_id) const {
+    sql::Stmt s(db, (std::string("SELECT ") + kTaskColumns +
+                     " FROM tasks WHERE lease_id = ?1 AND state = 'leased'")
+                        .c_str());
+    s.bind(1, lease_id);
+    if (!s.step()) return std::nullopt;
+    return read_task(s);
+  }
+};
+
+JobStore::JobStore(const std::filesystem::path& file, StoreOptions options)
+    : impl_(std::make_unique<Impl>(file, options)) {
+  auto& db = impl_->db;
+  db.exec("PRAGMA journal_mode = WAL");
+  db.exec("PRAGMA synchronous = FULL");  // a committed state change survives power loss
+  db.exec("PRAGMA foreign_keys = ON");
+  sql::Transaction tx(db);
+  db.exec("CREATE TABLE IF NOT EXISTS schema_version(version INTEGER NOT NULL)");
+  int v = impl_->version();
+  if (v == 0 && !sql::Stmt(db, "SELECT 1 FROM schema_version").step())
+    db.exec("INSERT INTO schema_version(version) VALUES(0)");
+  const int latest = int(std::size(kMigrations));
+  if (v > latest)
+    throw StoreError("job store " + file.string() + " has schema version " + std::to_string(v) +
+                     ", newer than this vesper understands (" + std::to_string(latest) + ")");
+  for (; v < latest; ++v) db.exec(kMigrations[v]);
+  sql::Stmt(db, "UPDATE schema_version SET version = ?1").bind(1, int64_t(latest)).run();
+  tx.commit();
+}
+
+JobStore::~JobStore() = default;
+
+int JobStore::schema_version() const { return impl_->version(); }
+
+int64_t JobStore::submit(const JobSpec& spec, double now) {
+  if (spec.frames.empty()) throw StoreError("job '" + spec.name + "' has no frames");
+  if (spec.spp <= 0) throw StoreError("job '" + spec.name + "': spp must be positive");
+  if (spec.max_attempts <= 0)
+    throw StoreError("job '" + spec.name + "': max_attempts must be positive");
+  auto& db = impl_->db;
+  sql::Transaction tx(db);
+  sql::Stmt(db,
+            "INSERT INTO jobs(name, scene, spp, priority, max_attempts, state, created) "
+            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6)")
+      .bind(1, spec.name)
+      .bind(2, spec.scene)
+      .bind(3, int64_t(spec.spp))
+      .bind(4, int64_t(spec.priority))
+      .bind(5, int64_t(spec.max_attempts))
+      .bind(6, now)
+      .run();
+  const int64_t job = sqlite3_last_insert_rowid(db.get());
+  const int split = spec.samples_per_task > 0 ? spec.samples_per_task : spec.spp;
+  for (int frame : spec.frames)
+    for (int b = 0; b < spec.spp; b += split) {
+      sql::Stmt(db,
+                "INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(?1, ?2, "
+                "?3, ?4, 'queued')")
+          .bind(1, job)
+          .bind(2, int64_t(frame))
+          .bind(3, int64_t(b))
+          .bind(4, int64_t(std::min(spec.spp, b + split)))
+          .run();
+    }
+  tx.commit();
+  return job;
+}
+
+std::optional<Lease> JobStore::lease(const std::string& worker, double now) {
+  auto& db = impl_->db;
+  sql::Transaction tx(db);
+  impl_->expire(now);
+  sql::Stmt pick(db,
+                 "SELECT t.id, j.scene, j.spp FROM tasks t JOIN jobs j ON j.id = t.job_id "
+                 "WHERE t.state = 'queued' AND j.state = 'active' AND NOT EXISTS ("
+                 "  SELECT 1 FROM worker_failures f WHERE f.job_id = j.id AND f.worker = ?1 AND "
+                 "f.failures >= ?2) "
+                 "ORDER BY j.priority DESC, j.id, t.frame, t.sample_begin LIMIT 1");
+  pick.bind(1, worker).bind(2, int64_t(impl_->options.blocklist_threshold));
+  if (!pick.step()) {
+    tx.commit();  // expired leases were requeued
+    return std::nullopt;
+  }
+  Lease lease;
+  const int64_t task_id = pick.i64(0);
+  lease.scene = pick.text(1);
+  lease.spp = int(pick.i64(2));
+  lease.lease_id = new_lease_id();
+  lease.expiry = now + impl_->options.lease_seconds;
+  sql::Stmt(db,
+            "UPDATE tasks SET state = 'leased', lease_id = ?2, worker = ?3, lease_expiry = ?4 "
+            "WHERE id = ?1")
+      .bind(1, task_id)
+      .bind(2, lease.lease_id)
+      .bind(3, worker)
+      .bind(4, lease.expiry)
+      .run();
+  lease.task = *impl_->leased_task(lease.lease_id);
+  tx.commit();
+  return lease;
+}
+
+HeartbeatAnswer JobStore::heartbeat(const std::string& lease_id, double now) {
+  auto& db = impl_->db;
+  sql::Transaction tx(db);
+  const auto task = impl_->leased_task(lease_id);
+  if (!task) {
+    // Canceled and paused tasks keep the lease id they had: tell that worker to stop.
+    sql::Stmt s(db, "SELECT state FROM tasks WHERE lease_id = ?1");
+    s.bind(1, lease_id);
+    const bool stopped = s.step() && (s.text(0) == "canceled" || s.text(0) == "paused");
+    return stopped ? HeartbeatAnswer::Stop : HeartbeatAnswer::StaleLease;
+  }
+  sql::Stmt(db, "UPDATE tasks SET lease_expiry = ?2 WHERE id = ?1")
+      .bind(1, task->id)
+      .bind(2, now + impl_->options.lease_seconds)
+      .run();
+  tx.commit();
+  return HeartbeatAnswer::KeepRunning;
+}
+
+bool JobStore::complete(const std::string& lease_id, const std::string& result, double) {
+  auto& db = impl_->db;
+  sql::Transaction tx(db);
+  const auto task = impl_->leased_task(lease_id);
+  if (!task) return false;
+  sql::Stmt(db,
+            "UPDATE tasks SET state = 'done', result = ?2, lease_id = NULL, lease_expiry = NULL "
+            "WHERE id = ?1")
+      .bind(1, task->id)
+      .bind(2, result)
+      .run();
+  tx.commit();
+  return true;
+}
+
+bool JobStore::fail(const std::string& lease_id, const std::string& log_tail, double) {
+  auto& db = impl_->db;
+  sql::Transaction tx(db);
+  const auto task = impl_->leased_task(lease_id);
+  if (!task) return false;
+  impl_->record_failure(task->id, task->job_id, task->worker, log_tail);
+  tx.commit();
+  return true;
+}
+
+int JobStore::expire_leases(double now) {
+  sql::Transaction tx(impl_->db);
+  const int n = impl_->expire(now);
+  tx.commit();
+  return n;
+}
+
+namespace {
+// Sets a job's state and moves its unfinished tasks; false for an unknown job.
+bool set_job_state(sql::Db& db, int64_t job, const char* job_state, const char* task_sql) {
+  sql::Transaction tx(db);
+  sql::Stmt check(db, "SELECT 1 FROM jobs WHERE id = ?1");
+  check.bind(1, job);
+  if (!check.step()) return false;
+  sql::Stmt(db, "UPDATE jobs SET state = ?2 WHERE id = ?1")
+      .bind(1, job)
+      .bind(2, std::string(job_state))
+      .run();
+  sql::Stmt(db, task_sql).bind(1, job).run();
+  tx.commit();
+  return true;
+}
+}  // namespace
+
+// A canceled or paused job's leased tasks stop being leased at once: the
+// worker's next heartbeat answers Stop, and its late upload is refused.
+bool JobStore::cancel(int64_t job) {
+  return set_job_state(impl_->db, job, "canceled",
+                       "UPDATE tasks SET state = 'canceled', lease_expiry = NULL "
+                       "WHERE job_id = ?1 AND state IN ('queued', 'leased', 'paused')");
+}
+bool JobStore::pause(int64_t job) {
+  return set_job_state(impl_->db, job, "paused",
+                       "UPDATE tasks SET state = 'paused', lease_expiry = NULL "
+                       "WHERE job_id = ?1 AND state IN ('queued', 'leased')");
+}
+bool JobStore::resume(int64_t job) {
+  return set_job_state(impl_->db, job, "active",
+                       "UPDATE tasks SET state = 'queued' WHERE job_id = ?1 AND state = 'paused'");
+}
+
+int JobStore::retry_failed(int64_t job) {
+  auto& db = impl_->db;
+  sql::Transaction tx(db);
+  sql::Stmt(
+      db, "UPDATE tasks SET state = 'queued', attempts = 0 WHERE job_id = ?1 AND state = 'failed'")
+      .bind(1, job)
+      .run();
+  const int n = sqlite3_changes(db.get());
+  sql::Stmt(db, "DELETE FROM worker_failures WHERE job_id = ?1").bind(1, job).run();
+  tx.commit();
+  return n;
+}
+
+std::optional<JobSummary> JobStore::job(int64_t id) const {
+  sql::Stmt s(impl_->db, "SELECT id, name, priority, state FROM jobs WHERE id = ?1");
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  JobSummary j;
+  j.id = s.i64(0);
+  j.name = s.text(1);
+  j.priority = int(s.i64(2));
+  j.state = job_state(s.text(3));
+  sql::Stmt c(impl_->db, "SELECT state, COUNT(*) FROM tasks WHERE job_id = ?1 GROUP BY state");
+  c.bind(1, id);
+  while (c.step()) {
+    const int n = int(c.i64(1));
+    switch (task_state(c.text(0))) {
+      case TaskState::Queued:
+        j.queued = n;
+        break;
+      case TaskState::Leased:
+        j.leased = n;
+        break;
+      case TaskState::Done:
+        j.done = n;
+        break;
+      case TaskState::Failed:
+        j.failed = n;
+        break;
+      case TaskState::Canceled:
+        j.canceled = n;
+        break;
+      case TaskState::Paused:
+        j.paused = n;
+        break;
+    }
+  }
+  return j;
+}
+
+std::vector<JobSummary> JobStore::jobs() const {
+  std::vector<int64_t> ids;
+  {
+    sql::Stmt s(impl_->db, "SELECT id FROM jobs ORDER BY id");
+    while (s.step()) ids.push_back(s.i64(0));
+  }
+  std::vector<JobSummary> out;
+  for (int64_t id : ids) out.push_back(*job(id));
+  return out;
+}
+
+std::vector<Task> JobStore::tasks(int64_t job) const {
+  sql::Stmt s(impl_->db, (std::string("SELECT ") + kTaskColumns +
+                          " FROM tasks WHERE job_id = ?1 ORDER BY frame, sample_begin")
+                             .c_str());
+  s.bind(1, job);
+  std::vector<Task> out;
+  while (s.step()) out.push_back(read_task(s));
+  return out;
+}
+
+bool JobStore::blocked(int64_t job, const std::string& worker) const {
+  sql::Stmt s(impl_->db, "SELECT failures FROM worker_failures WHERE job_id = ?1 AND worker = ?2");
+  s.bind(1, job).bind(2, worker);
+  return s.step() && s.i64(0) >= impl_->options.blocklist_threshold;
+}
+
+}  // namespace vesper

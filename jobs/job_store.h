@@ -1,0 +1,70 @@
+#pragma once
+// The job store: SQLite in WAL mode with schema migrations. Every state
+// change is one IMMEDIATE transaction, so a process killed at any moment
+// leaves either the old or the new state, never a mix. Time is passed in by
+// the caller (seconds), which keeps lease expiry testable.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "jobs/job.h"
+
+namespace vesper {
+
+class StoreError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct StoreOptions {
+  double lease_seconds = 60;
+  int blocklist_threshold =
+      3;  // failures of one worker in one job before it is blocked for that job
+};
+
+// KeepRunning extends the lease; Stop: the job was canceled or paused;
+// StaleLease: the lease expired or was replaced (the worker lost the task).
+enum class HeartbeatAnswer { KeepRunning, Stop, StaleLease };
+
+class JobStore {
+ public:
+  // Opens (creating if needed) and migrates the database.
+  explicit JobStore(const std::filesystem::path& file, StoreOptions options = {});
+  ~JobStore();
+  JobStore(const JobStore&) = delete;
+  JobStore& operator=(const JobStore&) = delete;
+
+  int schema_version() const;
+
+  int64_t submit(const JobSpec& spec, double now);
+  // Requeues expired leases, then leases the best queued task this worker is
+  // not blocked for (highest priority, oldest job, lowest frame first).
+  std::optional<Lease> lease(const std::string& worker, double now);
+  HeartbeatAnswer heartbeat(const std::string& lease_id, double now);
+  // Both refuse (return false) a lease that is no longer current: expired,
+  // re-leased, canceled. Committed results are never touched by stale calls.
+  bool complete(const std::string& lease_id, const std::string& result, double now);
+  bool fail(const std::string& lease_id, const std::string& log_tail, double now);
+  // Requeues tasks whose lease expired (counted as a failed attempt).
+  int expire_leases(double now);
+
+  bool cancel(int64_t job);
+  bool pause(int64_t job);
+  bool resume(int64_t job);
+  int retry_failed(int64_t job);
+
+  std::optional<JobSummary> job(int64_t job) const;
+  std::vector<JobSummary> jobs() const;
+  std::vector<Task> tasks(int64_t job) const;
+  bool blocked(int64_t job, const std::string& worker) const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vesper

@@ -1,0 +1,194 @@
+// The SQLite job store: leases with fencing, retries, blocklist, cancel and
+// pause, persistence across reopen, and atomicity when a process dies
+// inside a transaction.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "jobs/job_store.h"
+#include "jobs/sqlite_db.h"
+
+namespace fs = std::filesystem;
+
+namespace vesper {
+namespace {
+
+class JobStoreTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("vesper-jobs-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path db() const { return dir_ / "jobs.sqlite"; }
+  static JobSpec spec(std::vector<int> frames, int spp = 8, int split = 0, int priority = 50,
+                      int attempts = 3) {
+    return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts};
+  }
+  fs::path dir_;
+};
+
+TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {
+  JobStore s(db());
+  const int64_t j = s.submit(spec({1, 2}, 10, 4), 0);
+  const auto tasks = s.tasks(j);
+  ASSERT_EQ(tasks.size(), 6u);
+  EXPECT_EQ(tasks[0].sample_begin, 0);
+  EXPECT_EQ(tasks[0].sample_end, 4);
+  EXPECT_EQ(tasks[2].sample_begin, 8);
+  EXPECT_EQ(tasks[2].sample_end, 10);  // the last range is short
+  EXPECT_EQ(tasks[3].frame, 2);
+  EXPECT_EQ(s.job(j)->queued, 6);
+  EXPECT_EQ(s.schema_version(), 1);
+}
+
+TEST_F(JobStoreTest, LeasesByPriorityThenAgeThenFrame) {
+  JobStore s(db());
+  const int64_t low = s.submit(spec({5, 1}, 8, 0, 10), 0);
+  const int64_t high = s.submit(spec({3}, 8, 0, 90), 1);
+  auto a = s.lease("w1", 2);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->task.job_id, high);
+  auto b = s.lease("w1", 2);
+  EXPECT_EQ(b->task.job_id, low);
+  EXPECT_EQ(b->task.frame, 1);
+  EXPECT_NE(a->lease_id, b->lease_id);
+  EXPECT_EQ(a->scene, "scene-sha");
+  EXPECT_TRUE(s.lease("w2", 2));
+  EXPECT_FALSE(s.lease("w2", 2));  // nothing left
+}
+
+TEST_F(JobStoreTest, ExpiredLeaseIsRequeuedAndTheLateUploadRefused) {
+  JobStore s(db(), StoreOptions{10, 3});
+  const int64_t j = s.submit(spec({1}), 0);
+  const auto dead = s.lease("w-dead", 0);
+  ASSERT_TRUE(dead);
+  EXPECT_FALSE(s.lease("w2", 5));        // still leased
+  const auto again = s.lease("w2", 11);  // expired at 10: requeued and re-leased
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->task.id, dead->task.id);
+  EXPECT_EQ(again->task.attempts, 1);
+  EXPECT_FALSE(s.complete(dead->lease_id, "late", 12));  // fencing
+  EXPECT_EQ(s.heartbeat(dead->lease_id, 12), HeartbeatAnswer::StaleLease);
+  EXPECT_TRUE(s.complete(again->lease_id, "good", 12));
+  EXPECT_FALSE(s.complete(again->lease_id, "twice", 13));  // committed once
+  EXPECT_EQ(s.tasks(j)[0].result, "good");
+  EXPECT_TRUE(s.job(j)->finished());
+}
+
+TEST_F(JobStoreTest, HeartbeatExtendsTheLease) {
+  JobStore s(db(), StoreOptions{10, 3});
+  s.submit(spec({1}), 0);
+  const auto l = s.lease("w", 0);
+  EXPECT_EQ(s.heartbeat(l->lease_id, 8), HeartbeatAnswer::KeepRunning);  // now expires at 18
+  EXPECT_EQ(s.expire_leases(15), 0);
+  EXPECT_EQ(s.expire_leases(19), 1);
+}
+
+TEST_F(JobStoreTest, FailuresRetryThenFailWithTheLogAndBlockTheWorker) {
+  JobStore s(db(), StoreOptions{60, 2});
+  const int64_t j = s.submit(spec({1, 2}, 8, 0, 50, 3), 0);
+  // w-bad fails frame 1 twice: it is then blocked for this job.
+  auto l = s.lease("w-bad", 0);
+  ASSERT_EQ(l->task.frame, 1);
+  EXPECT_TRUE(s.fail(l->lease_id, "segfault in frame 1", 1));
+  l = s.lease("w-bad", 2);
+  ASSERT_EQ(l->task.frame, 1);
+  EXPECT_TRUE(s.fail(l->lease_id, "segfault in frame 1 again", 3));
+  EXPECT_TRUE(s.blocked(j, "w-bad"));
+  EXPECT_FALSE(s.lease("w-bad", 4));
+  // Another worker gets the third and last attempt of frame 1, and fails it too.
+  l = s.lease("w-good", 5);
+  ASSERT_EQ(l->task.frame, 1);
+  EXPECT_TRUE(s.fail(l->lease_id, "segfault, third time", 6));
+  const auto tasks = s.tasks(j);
+  EXPECT_EQ(tasks[0].state, TaskState::Failed);
+  EXPECT_EQ(tasks[0].attempts, 3);
+  EXPECT_EQ(tasks[0].log, "segfault, third time");
+  // The rest of the job completes.
+  l = s.lease("w-good", 7);
+  ASSERT_EQ(l->task.frame, 2);
+  EXPECT_TRUE(s.complete(l->lease_id, "ok", 8));
+  EXPECT_TRUE(s.job(j)->finished());
+  EXPECT_EQ(s.job(j)->failed, 1);
+  // retry-failed requeues it and lifts the blocklist.
+  EXPECT_EQ(s.retry_failed(j), 1);
+  EXPECT_FALSE(s.blocked(j, "w-bad"));
+  EXPECT_TRUE(s.lease("w-bad", 9));
+}
+
+TEST_F(JobStoreTest, CancelAndPauseStopRunningTasksAtTheNextHeartbeat) {
+  JobStore s(db());
+  const int64_t j = s.submit(spec({1, 2, 3}), 0);
+  const auto running = s.lease("w", 0);
+  EXPECT_TRUE(s.pause(j));
+  EXPECT_EQ(s.heartbeat(running->lease_id, 1), HeartbeatAnswer::Stop);
+  EXPECT_FALSE(s.complete(running->lease_id, "x", 1));
+  EXPECT_FALSE(s.lease("w", 1));
+  EXPECT_EQ(s.job(j)->paused, 3);
+  EXPECT_TRUE(s.resume(j));
+  const auto l = s.lease("w", 2);
+  ASSERT_TRUE(l);
+  EXPECT_TRUE(s.cancel(j));
+  EXPECT_EQ(s.heartbeat(l->lease_id, 3), HeartbeatAnswer::Stop);
+  EXPECT_EQ(s.job(j)->canceled, 3);
+  EXPECT_TRUE(s.job(j)->finished());
+  EXPECT_FALSE(s.cancel(999));
+}
+
+TEST_F(JobStoreTest, CommittedStateSurvivesReopening) {
+  int64_t j = 0;
+  std::string lease_id;
+  {
+    JobStore s(db());
+    j = s.submit(spec({1, 2}), 0);
+    const auto a = s.lease("w", 0);
+    EXPECT_TRUE(s.complete(a->lease_id, "frame1.exr", 1));
+    lease_id = s.lease("w", 1)->lease_id;
+  }
+  JobStore s(db());
+  EXPECT_EQ(s.job(j)->done, 1);
+  EXPECT_EQ(s.job(j)->leased, 1);
+  EXPECT_EQ(s.tasks(j)[0].result, "frame1.exr");
+  EXPECT_TRUE(s.complete(lease_id, "frame2.exr", 2));  // the lease is still valid after a restart
+}
+
+TEST_F(JobStoreTest, AProcessKilledInsideATransactionLeavesNoTrace) {
+  { JobStore s(db()); }
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    // Child: write inside a transaction and die without committing (like kill -9).
+    try {
+      sql::Db db(this->db().string());
+      db.exec("BEGIN IMMEDIATE");
+      db.exec(
+          "INSERT INTO jobs(name, scene, spp, priority, max_attempts, state, created) "
+          "VALUES('ghost', 's', 1, 1, 1, 'active', 0)");
+    } catch (...) {
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  JobStore s(db());
+  EXPECT_TRUE(s.jobs().empty());
+  EXPECT_NO_THROW(s.submit(spec({1}), 0));  // and the database is not locked
+}
+
+TEST_F(JobStoreTest, ANewerSchemaIsRefused) {
+  { JobStore s(db()); }
+  {
+    sql::Db raw(db().string());
+    raw.exec("UPDATE schema_version SET version = 99");
+  }
+  EXPECT_THROW(JobStore s(db()), StoreError);
+}
+
+}  // namespace
+}  // namespace vesper
