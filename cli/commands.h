@@ -20,6 +20,26 @@ struct RenderCommandOptions {
 };
 int run_render(const RenderCommandOptions& options);
 
+// vesper comp: composite layered EXR passes from a recipe (docs/compositing.md)
+// or from quick flags (`vesper comp in.exr --layer lightrays:0.8 -o out.png`).
+struct CompCommandOptions {
+  std::string input;                // recipe (.json) or an EXR / `####` sequence
+  std::vector<std::string> layers;  // --layer NAME[:GAIN[:add|over]]
+  bool no_beauty = false;
+  std::optional<float> exposure, saturation;
+  std::optional<std::string> cdl_slope, cdl_offset, cdl_power;  // r,g,b
+  std::optional<std::string> look, config, display, view;
+  std::optional<std::string> output, exr, hist, hist_plot;
+  std::optional<int> bit_depth;
+  bool quiet = false;
+  bool has_quick_flags() const {
+    return !layers.empty() || no_beauty || exposure || saturation || cdl_slope || cdl_offset ||
+           cdl_power || look || config || display || view || output || exr || hist ||
+           hist_plot || bit_depth;
+  }
+};
+int run_comp(const CompCommandOptions& options);
+
 // vesper vdb cloud: a procedural cloud written as an OpenVDB fog volume.
 struct VdbCloudOptions {
   std::string output;

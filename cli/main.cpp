@@ -33,6 +33,29 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   r->add_flag("-q,--quiet", render.quiet, "Print only the output path");
 
+  vesper::cli::CompCommandOptions comp;
+  auto* co = app.add_subcommand(
+      "comp", "Composite layered EXR passes: a recipe (JSON) or an EXR with quick flags");
+  co->add_option("input", comp.input, "Recipe (.json), or an EXR / frame.####.exr sequence")
+      ->required();
+  co->add_option("--layer", comp.layers, "Add a layer: NAME[:GAIN[:add|over]] (repeatable)");
+  co->add_flag("--no-beauty", comp.no_beauty, "Do not start from the beauty");
+  co->add_option("--exposure", comp.exposure, "Grade exposure (stops)");
+  co->add_option("--cdl-slope", comp.cdl_slope, "ASC CDL slope r,g,b");
+  co->add_option("--cdl-offset", comp.cdl_offset, "ASC CDL offset r,g,b");
+  co->add_option("--cdl-power", comp.cdl_power, "ASC CDL power r,g,b");
+  co->add_option("--saturation", comp.saturation, "ASC CDL saturation");
+  co->add_option("--look", comp.look, "LUT look file (.cube, ...)");
+  co->add_option("--config", comp.config, "OCIO config (default: $OCIO, else bundled)");
+  co->add_option("--display", comp.display, "OCIO display (default sRGB)");
+  co->add_option("--view", comp.view, "OCIO view (default Standard)");
+  co->add_option("-o,--output", comp.output, "Display image (.png, .jpg, .tif)");
+  co->add_option("--bit-depth", comp.bit_depth, "Image bit depth: 8 (default) or 16");
+  co->add_option("--exr", comp.exr, "Graded scene-linear EXR");
+  co->add_option("--hist", comp.hist, "Histogram JSON (default: <image>.hist.json)");
+  co->add_option("--hist-plot", comp.hist_plot, "Histogram PNG plot");
+  co->add_flag("-q,--quiet", comp.quiet, "Print only the output paths");
+
   vesper::cli::VdbCloudOptions vdb_cloud;
   vesper::cli::VdbInfoOptions vdb_info;
   auto* vdb =
@@ -59,6 +82,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (r->parsed()) return vesper::cli::run_render(render);
+    if (co->parsed()) return vesper::cli::run_comp(comp);
     if (vc->parsed()) return vesper::cli::run_vdb_cloud(vdb_cloud);
     if (vi->parsed()) return vesper::cli::run_vdb_info(vdb_info);
   } catch (const std::exception& e) {

@@ -1,0 +1,217 @@
+// run_comp: recipe -> graded EXR, display image, luminosity histogram (comp_run.h).
+#include "compositor/comp_run.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <fstream>
+#include <system_error>
+
+#include "compositor/grade.h"
+#include "renderer/output/exr_io.h"
+
+namespace vesper {
+namespace fs = std::filesystem;
+namespace {
+
+std::string join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s.empty() ? "none" : s;
+}
+
+// Temporary files of one frame: each output is written to a hidden sibling of
+// its final path (same folder, so the rename is atomic and never crosses a
+// filesystem) and renamed by commit(); anything not committed is removed.
+class FrameFiles {
+ public:
+  ~FrameFiles() {
+    std::error_code ec;
+    for (const auto& [tmp, final_path] : files_) fs::remove(tmp, ec);
+  }
+  // A temporary path for `final_path`, keeping its extension (writers choose
+  // the format by it).
+  fs::path temp_for(const fs::path& final_path) {
+    static std::atomic<unsigned> counter{0};
+    const fs::path dir = final_path.has_parent_path() ? final_path.parent_path() : fs::path(".");
+    const fs::path tmp = dir / ("." + final_path.stem().string() + ".tmp-" +
+                                std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+                                final_path.extension().string());
+    files_.emplace_back(tmp, final_path);
+    return tmp;
+  }
+  void commit() {
+    std::error_code ec;
+    for (size_t i = 0; i < files_.size(); ++i) {
+      fs::rename(files_[i].first, files_[i].second, ec);
+      if (ec) {
+        const std::string msg = "cannot move the finished file to " + files_[i].second.string() +
+                                ": " + ec.message();
+        // Undo the renames already done: a frame is all or nothing.
+        for (size_t j = 0; j < i; ++j) fs::remove(files_[j].second, ec);
+        throw CompError(msg);
+      }
+    }
+    files_.clear();
+  }
+
+ private:
+  std::vector<std::pair<fs::path, fs::path>> files_;
+};
+
+void write_text(const fs::path& path, const std::string& text, const fs::path& final_path) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) throw CompError(final_path.string() + ": cannot write the file");
+}
+
+void write_display_image(const RgbaImage& display, const CompOutputs& o, const fs::path& tmp,
+                         const fs::path& final_path) {
+  const std::vector<uint16_t> q = quantize_rgb(display, o.bit_depth);
+  const char* format = o.image_format == ImageFormat::Png    ? "png"
+                       : o.image_format == ImageFormat::Jpeg ? "jpeg"
+                                                             : "tiff";
+  auto out = OIIO::ImageOutput::create(format);
+  if (!out) throw CompError(final_path.string() + ": no " + format + " writer: " + OIIO::geterror());
+  const OIIO::TypeDesc type = o.bit_depth == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
+  OIIO::ImageSpec spec(display.width, display.height, 3, type);
+  if (o.image_format == ImageFormat::Jpeg) spec.attribute("Compression", "jpeg:95");
+  if (o.image_format == ImageFormat::Tiff) spec.attribute("compression", "zip");
+  spec.attribute("Software", "vesper comp");
+  bool ok = out->open(tmp.string(), spec);
+  if (ok) {
+    if (o.bit_depth == 16) {
+      ok = out->write_image(type, q.data());
+    } else {
+      std::vector<uint8_t> bytes(q.begin(), q.end());
+      ok = out->write_image(type, bytes.data());
+    }
+  }
+  const bool closed = ok && out->close();
+  if (!ok || !closed) throw CompError(final_path.string() + ": cannot write: " + out->geterror());
+}
+
+LayeredImage read_input(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw CompError(path.string() + ": no such file");
+  try {
+    LayeredImage img = read_exr(path);
+    if (img.width <= 0 || img.height <= 0 || img.channels.empty())
+      throw CompError(path.string() + ": an empty image");
+    return img;
+  } catch (const ImageIoError& e) {
+    throw CompError(path.string() + ": not a readable EXR (" + e.what() + ")");
+  }
+}
+
+}  // namespace
+
+std::vector<uint16_t> quantize_rgb(const RgbaImage& display, int bits) {
+  const float maxv = bits == 16 ? 65535.f : 255.f;
+  std::vector<uint16_t> out(display.pixel_count() * 3);
+  for (size_t i = 0; i < display.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      float v = display.pixels[i * 4 + size_t(c)];
+      if (!(v > 0.f)) v = 0.f;  // NaN and negatives
+      if (v > 1.f) v = 1.f;
+      out[i * 3 + size_t(c)] = uint16_t(std::lround(v * maxv));
+    }
+  return out;
+}
+
+CompReport run_comp(const CompRecipe& recipe, const CompProgress& progress) {
+  if (recipe.inputs.empty()) throw CompError(recipe.label + ": no inputs");
+  if (recipe.layers.empty()) throw CompError(recipe.label + ": no layers");
+  // The OCIO processors are built once, before any pixel is read, so a
+  // missing config or an unknown view fails before anything is written.
+  const Grader grader(recipe.grade, recipe.display);
+  const CompOutputs& out = recipe.outputs;
+  const fs::path histogram_pattern = out.histogram.empty() ? default_histogram_path(out) : out.histogram;
+
+  const bool sequence = !recipe.frames.empty();
+  const size_t total = sequence ? recipe.frames.size() : 1;
+  CompReport report;
+  for (size_t fi = 0; fi < total; ++fi) {
+    CompFrameReport fr;
+    if (sequence) fr.frame = recipe.frames[fi];
+    auto resolve = [&](const fs::path& p) { return fr.frame ? frame_path(p, *fr.frame) : p; };
+
+    // Read the inputs this frame uses.
+    std::vector<LayeredImage> images(recipe.inputs.size());
+    std::vector<fs::path> paths(recipe.inputs.size());
+    std::vector<bool> loaded(recipe.inputs.size(), false);
+    for (const CompLayer& l : recipe.layers) {
+      if (l.input >= recipe.inputs.size()) throw CompError(recipe.label + ": bad input index");
+      if (loaded[l.input]) continue;
+      const CompInput& in = recipe.inputs[l.input];
+      paths[l.input] = in.sequence ? resolve(in.path) : in.path;
+      images[l.input] = read_input(paths[l.input]);
+      loaded[l.input] = true;
+    }
+
+    // Mix.
+    const LayeredImage& first = images[recipe.layers.front().input];
+    RgbaImage canvas(first.width, first.height);
+    for (const CompLayer& l : recipe.layers) {
+      const LayeredImage& img = images[l.input];
+      const std::string source = paths[l.input].string();
+      const std::vector<std::string> available = list_layers(img);
+      if (std::find(available.begin(), available.end(), l.op.layer) == available.end()) {
+        throw CompError(recipe.label + ": " + l.json_path + ": no layer '" + l.op.layer + "' in " +
+                        source + " (layers: " + join(available) + ")");
+      }
+      if (img.width != canvas.width || img.height != canvas.height) {
+        throw CompError(recipe.label + ": " + l.json_path + ": " + source + " is " +
+                        std::to_string(img.width) + "x" + std::to_string(img.height) +
+                        ", the composite " + std::to_string(canvas.width) + "x" +
+                        std::to_string(canvas.height));
+      }
+      blend_layer(canvas, extract_layer(img, l.op.layer, source), l.op);
+    }
+
+    FrameFiles files;
+    grader.apply_grade(canvas);
+    if (!out.exr.empty()) {
+      fr.exr = resolve(out.exr);
+      LayeredImage exr;
+      exr.width = canvas.width;
+      exr.height = canvas.height;
+      exr.channels = {"R", "G", "B", "A"};
+      exr.pixels = canvas.pixels;
+      exr.metadata = first.metadata;
+      exr.metadata["vesper:comp_recipe"] = recipe.label;
+      exr.metadata["vesper:comp_colorspace"] = "scene_linear (graded)";
+      try {
+        write_exr(exr, files.temp_for(fr.exr));
+      } catch (const ImageIoError& e) {
+        throw CompError(fr.exr.string() + ": cannot write: " + e.what());
+      }
+    }
+    RgbaImage display = std::move(canvas);
+    grader.apply_display(display);
+    if (!out.image.empty()) {
+      fr.image = resolve(out.image);
+      write_display_image(display, out, files.temp_for(fr.image), fr.image);
+    }
+    fr.display_histogram = display_histogram(display, LumaWeights::Rec709);
+    fr.histogram = resolve(histogram_pattern);
+    write_text(files.temp_for(fr.histogram), histogram_json(fr.display_histogram) + "\n",
+               fr.histogram);
+    if (!out.histogram_plot.empty()) {
+      fr.histogram_plot = resolve(out.histogram_plot);
+      write_histogram_png(fr.display_histogram, files.temp_for(fr.histogram_plot));
+    }
+    files.commit();
+    fr.width = display.width;
+    fr.height = display.height;
+    report.frames.push_back(std::move(fr));
+    if (progress) progress(fi + 1, total);
+  }
+  return report;
+}
+
+}  // namespace vesper
