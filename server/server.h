@@ -1,0 +1,64 @@
+#pragma once
+// The farm server: an HTTP JSON API under /api/v1 over the job store
+// (jobs/), a content-addressed blob store, bearer tokens for submitters and
+// workers, /metrics and /healthz. See server/README.md for the API.
+//
+// Data dir layout: tokens.json (0600), jobs.sqlite (+WAL), workers.json,
+// blobs/ab/cdef... (+ blobs/tmp/).
+//
+// This header does not include cpp-httplib; server.cpp is the only file that
+// does.
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace vesper {
+
+struct ServerConfig {
+  std::filesystem::path data_dir;
+  std::string host = "127.0.0.1";  // loopback unless configured otherwise
+  int port = 0;                    // 0 = an ephemeral port (start() returns it)
+  double lease_seconds = 60;
+  int blocklist_threshold = 3;
+  std::size_t max_blob_bytes = std::size_t(64) << 20;  // PUT /blobs bodies; 413 beyond
+  std::size_t max_json_bytes = std::size_t(1) << 20;   // JSON bodies; 413 beyond
+  int threads = 16;  // HTTP worker threads (each keep-alive connection holds one while open)
+  // Seconds for the job store's `now` (lease expiry). Empty: the wall clock
+  // (seconds since the Unix epoch) clamped so it never goes backwards within
+  // the process. A wall clock rather than a boot-relative one, because lease
+  // expiries are persisted and must stay meaningful across a server restart.
+  std::function<double()> clock;
+  // How often expired leases are requeued in the background (seconds);
+  // 0 = lease_seconds / 4, at most 5 s. Leasing also requeues them.
+  double reaper_interval = 0;
+};
+
+class Server {
+ public:
+  // Creates the data dir if needed, creates or reads the token file, opens
+  // (and migrates) the job store. Throws on a bad data dir or token file.
+  explicit Server(ServerConfig config);
+  ~Server();  // stops
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  // Binds and serves on a background thread; returns the bound port. Throws
+  // if the address cannot be bound. Call at most once per Server.
+  int start();
+  // Stops serving and waits for the server thread; idempotent.
+  void stop();
+
+  int port() const;
+  std::string url() const;  // http://host:port
+  std::string submitter_token() const;
+  std::string worker_token() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vesper
