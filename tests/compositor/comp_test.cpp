@@ -562,3 +562,23 @@ TEST_F(CompCli, ErrorsExitTwoAndLeaveNothingBehind) {
   const auto r = run(q(dir_ / "in.exr") + out);
   EXPECT_EQ(r.exit_code, 0) << r.err;
 }
+
+// The shipped night-room recipe is valid and runs (on a synthetic frame with
+// the same layers, written to a scratch folder instead of out/).
+TEST(Recipe, NightRoomRecipeRuns) {
+  ScratchDir dir;
+  const fs::path recipe_dir = fs::path(VESPER_SOURCE_DIR) / "scenes/night-room";
+  json doc = json::parse(read_text(recipe_dir / "comp.json"));
+  write_exr(night_like(), dir / "night-room.exr");
+  doc["inputs"]["frame"] = (dir / "night-room.exr").string();
+  for (auto& [key, value] : doc["outputs"].items())
+    value = (dir / fs::path(value.get<std::string>()).filename()).string();
+  const CompRecipe r = parse_recipe(doc, recipe_dir, (recipe_dir / "comp.json").string());
+  EXPECT_EQ(r.layers.size(), 3u);
+  EXPECT_EQ(r.display.view, "ACES 1.0 SDR");
+  run_comp(r);
+  EXPECT_EQ(files_in(dir.path),
+            (std::vector<std::string>{"night-room.comp.exr", "night-room.comp.hist.json",
+                                      "night-room.comp.hist.png", "night-room.comp.png",
+                                      "night-room.exr"}));
+}
