@@ -37,9 +37,11 @@ class FrameFiles {
   fs::path temp_for(const fs::path& final_path) {
     static std::atomic<unsigned> counter{0};
     const fs::path dir = final_path.has_parent_path() ? final_path.parent_path() : fs::path(".");
-    const fs::path tmp = dir / ("." + final_path.stem().string() + ".tmp-" +
-                                std::to_string(::getpid()) + "-" + std::to_string(counter++) +
-                                final_path.extension().string());
+    std::string name = ".";  // built with += (gcc 12 warns falsely on "." + std::string)
+    name += final_path.stem().string();
+    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    name += final_path.extension().string();
+    const fs::path tmp = dir / name;
     files_.emplace_back(tmp, final_path);
     return tmp;
   }
