@@ -582,3 +582,45 @@ TEST(Recipe, NightRoomRecipeRuns) {
                                       "night-room.comp.hist.png", "night-room.comp.png",
                                       "night-room.exr"}));
 }
+
+// Identity recipe (beauty only, no grade, view Standard) written as an 8-bit
+// PNG equals oiiotool's own OCIO display conversion of the same EXR to 8 bits,
+// within one code value (1/255).
+TEST(CompRun, IdentityRecipeMatchesOiiotoolOciodisplay) {
+  if (std::system("command -v oiiotool >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "oiiotool not installed (openimageio-tools)";
+  Fixture f;
+  // Brighter than night_like alone, so some values clip at the top.
+  LayeredImage img = night_like(32, 24, 3.f);
+  write_exr(img, f.dir / "frame.exr");
+  for (const std::string view : {"Standard", "ACES 1.0 SDR"}) {
+    json j = base_recipe();
+    j["display"]["view"] = view;
+    j["outputs"] = {{"image", "out/comp.png"}};
+    run_comp(load_recipe(f.recipe(j)));
+    const fs::path ref = f.dir / "ref.png";
+    const std::string cmd = "oiiotool '" + (f.dir / "frame.exr").string() + "' --ch R,G,B --colorconfig '" +
+                            kConfig + "' --iscolorspace 'Linear Rec.709 (sRGB)' --ociodisplay sRGB '" +
+                            view + "' -d uint8 -o '" + ref.string() + "' >/dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    auto read8 = [](const fs::path& p) {
+      auto in = OIIO::ImageInput::open(p.string());
+      EXPECT_TRUE(in) << p;
+      std::vector<uint8_t> px(size_t(in->spec().width * in->spec().height * 3));
+      EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
+      in->close();
+      return px;
+    };
+    const auto mine = read8(f.dir / "out/comp.png"), theirs = read8(ref);
+    ASSERT_EQ(mine.size(), theirs.size());
+    int max_diff = 0, nonzero = 0;
+    for (size_t i = 0; i < mine.size(); ++i) {
+      max_diff = std::max(max_diff, std::abs(int(mine[i]) - int(theirs[i])));
+      nonzero += mine[i] > 0;
+    }
+    EXPECT_LE(max_diff, 1) << view;
+    EXPECT_GT(nonzero, int(mine.size() / 2)) << view;
+    fs::remove_all(f.dir / "out");
+    fs::create_directories(f.dir / "out");
+  }
+}
