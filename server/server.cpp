@@ -578,11 +578,13 @@ struct Server::Impl {
       send_error(res, res.status, msg);
       return httplib::Server::HandlerResponse::Handled;
     }));
-    http.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
-      {
-        std::lock_guard lock(metrics_mutex);
-        ++http_codes[res.status];
-      }
+    // Counted before the response is written (the logger runs after it), so
+    // a client that got an answer sees it in the next /metrics.
+    http.set_post_routing_handler([this](const httplib::Request&, httplib::Response& res) {
+      std::lock_guard lock(metrics_mutex);
+      ++http_codes[res.status];
+    });
+    http.set_logger([](const httplib::Request& req, const httplib::Response& res) {
       spdlog::debug("{} {} -> {}", req.method, req.path, res.status);
     });
   }

@@ -14,6 +14,9 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
+#include <thread>
+#include <mutex>
+#include <map>
 
 #include "server/server.h"
 #include "server/sha256.h"
@@ -509,7 +512,8 @@ TEST_F(ServerTest, MetricsAreValidPrometheusText) {
   EXPECT_EQ(values["vesper_tasks{state=\"failed\"}"], 0);
   EXPECT_EQ(values["vesper_leases_granted_total"], 1);
   EXPECT_EQ(values["vesper_workers"], 1);
-  EXPECT_GE(values["vesper_http_requests_total{code=\"200\"}"], 2);
+  EXPECT_GE(values["vesper_http_requests_total{code=\"200\"}"], 2);  // register, lease
+  EXPECT_EQ(values["vesper_http_requests_total{code=\"201\"}"], 2);  // blob, job
   EXPECT_GE(values["vesper_http_requests_total{code=\"401\"}"], 1);
 }
 
@@ -538,6 +542,58 @@ TEST_F(ServerTest, RequestSizeLimitsAre413) {
   EXPECT_TRUE(json::parse(r->body).contains("error"));
   // The server still answers afterwards.
   EXPECT_EQ(client().Get("/healthz")->status, 200);
+}
+
+TEST_F(ServerTest, ConcurrentWorkersNeverShareATask) {
+  start();
+  const int64_t job = submit(24, 8, 4);  // 48 tasks
+  std::vector<std::string> ids;
+  for (const char* name : {"w0", "w1", "w2", "w3", "w4", "w5"}) ids.push_back(register_worker(name));
+  std::mutex mu;
+  std::map<int64_t, int> completed;  // task id -> times completed
+  std::vector<std::thread> threads;
+  for (const std::string& w : ids)
+    threads.emplace_back([&, w] {
+      httplib::Client c("127.0.0.1", port_);
+      for (;;) {
+        auto r = c.Post("/api/v1/lease", wrk(), json{{"worker_id", w}}.dump(), "application/json");
+        if (!r || r->status != 200) break;
+        const json l = json::parse(r->body);
+        const std::string bytes = "result " + l.at("task").at("id").dump();
+        c.Put(("/api/v1/blobs/" + sha256_hex(bytes)).c_str(), wrk(), bytes, "application/octet-stream");
+        r = c.Post("/api/v1/complete", wrk(),
+                   json{{"lease_id", l.at("lease_id")}, {"result", sha256_hex(bytes)}}.dump(),
+                   "application/json");
+        if (r && r->status == 200) {
+          std::lock_guard lock(mu);
+          ++completed[l.at("task").at("id").get<int64_t>()];
+        }
+      }
+    });
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(completed.size(), 48u);
+  for (const auto& [task, n] : completed) EXPECT_EQ(n, 1) << "task " << task;
+  const json j = get_ok("/jobs/" + std::to_string(job));
+  EXPECT_EQ(j.at("counts").at("done"), 48);
+}
+
+TEST_F(ServerTest, ExpiredLeasesAreRequeuedInTheBackground) {
+  ServerConfig c = config();
+  c.reaper_interval = 0.02;
+  start(c);
+  const int64_t job = submit(1);
+  const json l = lease(register_worker("w"));
+  EXPECT_EQ(get_ok("/jobs/" + std::to_string(job)).at("counts").at("leased"), 1);
+  advance(11);
+  json j;
+  for (int i = 0; i < 200; ++i) {
+    j = get_ok("/jobs/" + std::to_string(job));
+    if (j.at("counts").at("queued") == 1) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(j.at("counts").at("queued"), 1);  // without anyone asking for a lease
+  EXPECT_EQ(j.at("tasks")[0].at("attempts"), 1);
+  EXPECT_EQ(post("/heartbeat", {{"lease_id", l.at("lease_id")}}, wrk())->status, 409);
 }
 
 TEST_F(ServerTest, UnknownEndpointIsJson404) {
