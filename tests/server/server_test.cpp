@@ -192,6 +192,8 @@ TEST_F(ServerTest, BlobsAreVerifiedAndContentAddressed) {
   EXPECT_EQ(r->status, 200);  // idempotent
   r = c.Head(("/api/v1/blobs/" + good).c_str(), wrk());
   EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(r->get_header_value("Content-Length"), std::to_string(bytes.size()));
+  EXPECT_TRUE(r->body.empty());
   r = c.Get(("/api/v1/blobs/" + good).c_str(), sub());
   EXPECT_EQ(r->status, 200);
   EXPECT_EQ(r->body, bytes);
@@ -540,8 +542,15 @@ TEST_F(ServerTest, RequestSizeLimitsAre413) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 413);
   EXPECT_TRUE(json::parse(r->body).contains("error"));
-  // The server still answers afterwards.
-  EXPECT_EQ(client().Get("/healthz")->status, 200);
+  // The server still answers afterwards, on the same connection too.
+  auto c2 = client();
+  r = c2.Put(("/api/v1/blobs/" + sha256_hex(big)).c_str(), wrk(), big, "application/octet-stream");
+  EXPECT_EQ(r->status, 413);
+  EXPECT_EQ(c2.Get("/healthz")->status, 200);
+  // Both kinds of 413 are counted.
+  r = client().Get("/metrics", wrk());
+  EXPECT_NE(r->body.find("vesper_http_requests_total{code=\"413\"} 3\n"), std::string::npos)
+      << r->body;
 }
 
 TEST_F(ServerTest, ConcurrentWorkersNeverShareATask) {
