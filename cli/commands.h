@@ -59,4 +59,18 @@ struct VdbInfoOptions {
 };
 int run_vdb_info(const VdbInfoOptions& options);
 
+// vesper hist: the luminosity histogram of an image (and its distance to a reference).
+struct HistCommandOptions {
+  std::string image;
+  std::optional<std::string> reference;  // --ref
+  std::string weights = "rec709";        // rec709 | luminosity
+  std::optional<std::string> json;       // --json OUT.json
+  std::optional<std::string> plot;       // --plot OUT.png
+  bool log2 = false;                     // primary histogram in log2 stops
+  std::string ocio_config;               // for EXR inputs; empty = $OCIO or the bundled config
+  std::string display = "sRGB";
+  std::string view = "Standard";
+};
+int run_hist(const HistCommandOptions& options);
+
 }  // namespace vesper::cli
