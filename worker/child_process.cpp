@@ -122,9 +122,11 @@ bool ChildProcess::wait_for(double seconds) {
 
 void ChildProcess::kill(double grace_seconds) {
   if (pid_ <= 0 || status_) return;
-  ::kill(pid_, SIGTERM);
+  // The child leads its own process group: signal the group, so anything it
+  // started goes too.
+  if (::kill(-pid_, SIGTERM) != 0) ::kill(pid_, SIGTERM);
   if (wait_for(grace_seconds)) return;
-  ::kill(pid_, SIGKILL);
+  if (::kill(-pid_, SIGKILL) != 0) ::kill(pid_, SIGKILL);
   int st;
   while (::waitpid(pid_, &st, 0) < 0 && errno == EINTR) {
   }

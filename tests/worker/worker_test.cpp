@@ -74,6 +74,13 @@ Pixels read_exr(const fs::path& p) {
   return px;
 }
 
+// Stops a worker running in the background when a test leaves early (a failed
+// ASSERT), so that the future's destructor does not wait forever.
+struct StopOnExit {
+  Worker& w;
+  ~StopOnExit() { w.request_stop(); }
+};
+
 class WorkerTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -313,6 +320,7 @@ TEST_F(WorkerTest, CancelKillsTheRunningRender) {
 
   Worker worker(worker_config());
   auto done = std::async(std::launch::async, [&] { return worker.run(); });
+  StopOnExit stop_on_exit{worker};
 
   // Wait until the render runs and heartbeats (the server shows its progress).
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -345,6 +353,99 @@ TEST_F(WorkerTest, CancelKillsTheRunningRender) {
   // No render output left behind.
   for (const auto& e : fs::directory_iterator(dir_ / "cache" / "tmp"))
     ADD_FAILURE() << "left over: " << e.path();
+}
+
+TEST_F(WorkerTest, StopDuringARenderFinishesAndCompletesTheTask) {
+  start();
+  // A few seconds on one thread.
+  const std::string scene = put_blob(tiny_scene(16, 16000).dump());
+  const json created =
+      submit({{"name", "stop"}, {"scene", scene}, {"frames", "1-2"}, {"spp", 16000}});
+  WorkerConfig c = worker_config();
+  c.exit_when_idle = false;
+  Worker worker(c);
+  auto done = std::async(std::launch::async, [&] { return worker.run(); });
+  StopOnExit stop_on_exit{worker};
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  bool running = false;
+  while (!running && std::chrono::steady_clock::now() < deadline) {
+    // Leased is enough: a stop is only looked at between tasks.
+    const json j = job(created.at("id"));  // (a range-for over a temporary's member would dangle)
+    for (const auto& t : j.at("tasks"))
+      if (t.at("state") == "leased") running = true;
+    if (!running) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_TRUE(running);
+  worker.request_stop();  // what the CLI's SIGTERM handler does
+  ASSERT_EQ(done.wait_for(std::chrono::seconds(60)), std::future_status::ready);
+  EXPECT_EQ(done.get(), 0);
+  EXPECT_EQ(worker.tasks_completed(), 1);
+  const json j = job(created.at("id"));
+  EXPECT_EQ(j.at("counts").at("done"), 1) << j.dump();
+  EXPECT_EQ(j.at("counts").at("queued"), 1) << j.dump();  // the second frame was not leased
+}
+
+TEST_F(WorkerTest, StopWhileIdleReturnsPromptly) {
+  start();
+  WorkerConfig c = worker_config();
+  c.exit_when_idle = false;
+  c.idle_backoff_min = 1;
+  c.idle_backoff_max = 5;
+  Worker worker(c);
+  auto done = std::async(std::launch::async, [&] { return worker.run(); });
+  StopOnExit stop_on_exit{worker};
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const auto stopped_at = std::chrono::steady_clock::now();
+  worker.request_stop();
+  ASSERT_EQ(done.wait_for(std::chrono::seconds(5)), std::future_status::ready);
+  EXPECT_EQ(done.get(), 0);
+  EXPECT_LT(std::chrono::steady_clock::now() - stopped_at, std::chrono::milliseconds(500));
+}
+
+TEST_F(WorkerTest, CrashingRendererFailsTheTaskNotTheWorker) {
+  start();
+  // A stand-in renderer that writes to stderr and dies of SIGSEGV.
+  const fs::path fake = dir_ / "crashing-vesper";
+  std::ofstream(fake) << "#!/bin/sh\necho 'about to crash' >&2\nkill -SEGV $$\n";
+  fs::permissions(fake, fs::perms::owner_all);
+  const std::string scene = put_blob(tiny_scene(16, 4).dump());
+  const json created = submit(
+      {{"name", "crash"}, {"scene", scene}, {"frames", "1-2"}, {"spp", 4}, {"max_attempts", 1}});
+  WorkerConfig c = worker_config();
+  c.vesper_binary = fake;
+  Worker worker(c);
+  EXPECT_EQ(worker.run(), 0);
+  EXPECT_EQ(worker.tasks_failed(), 2);
+  const json j = job(created.at("id"));
+  EXPECT_EQ(j.at("counts").at("failed"), 2) << j.dump();
+  const std::string jid = j.at("id").is_string() ? j.at("id").get<std::string>() : j.at("id").dump();
+  const json& t = j.at("tasks").at(0);
+  const std::string id = t.at("id").is_string() ? t.at("id").get<std::string>() : t.at("id").dump();
+  auto r = client().Get(("/api/v1/jobs/" + jid + "/tasks/" + id + "/log").c_str(), sub());
+  ASSERT_TRUE(r && r->status == 200);
+  EXPECT_NE(r->body.find("killed by signal 11"), std::string::npos) << r->body;
+  EXPECT_NE(r->body.find("about to crash"), std::string::npos) << r->body;
+}
+
+TEST_F(WorkerTest, CorruptCacheEntryIsDownloadedAgain) {
+  start();
+  const std::string scene_text = tiny_scene(16, 4).dump();
+  const std::string scene = put_blob(scene_text);
+  fs::create_directories(dir_ / "cache");
+  std::ofstream(dir_ / "cache" / (scene + ".json")) << "{\"not\": \"the scene\"}";
+  const json created = submit({{"name", "c"}, {"scene", scene}, {"frames", "1"}, {"spp", 4}});
+  Worker worker(worker_config());
+  EXPECT_EQ(worker.run(), 0);
+  EXPECT_EQ(worker.tasks_completed(), 1);
+  EXPECT_EQ(slurp(dir_ / "cache" / (scene + ".json")), scene_text);
+}
+
+TEST_F(WorkerTest, WrongTokenIsFatal) {
+  start();
+  WorkerConfig c = worker_config();
+  c.token = "nope";
+  Worker worker(c);
+  EXPECT_EQ(worker.run(), 1);
 }
 
 }  // namespace
