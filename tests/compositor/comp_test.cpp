@@ -302,8 +302,11 @@ TEST(Recipe, LayersDefaultToTheFirstInputAndMayNameAnother) {
   // frame + (-2) * 0.5 * frame = 0
   const LayeredImage out = read_exr(f.dir / "out/sum.exr");
   ASSERT_EQ(out.channels, (std::vector<std::string>{"R", "G", "B", "A"}));
-  for (size_t i = 0; i < out.pixels.size(); ++i)
-    if (i % 4 != 3) EXPECT_NEAR(out.pixels[i], 0.f, 1e-6f);
+  for (size_t i = 0; i < out.pixels.size(); ++i) {
+    if (i % 4 != 3) {
+      EXPECT_NEAR(out.pixels[i], 0.f, 1e-6f);
+    }
+  }
 }
 
 // ---------------------------------------------------------------- running
