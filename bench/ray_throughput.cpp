@@ -67,10 +67,10 @@ struct Settings {
   size_t rays_per_set = size_t(1) << 20;  // rays traced per benchmark iteration
   int mesh_segments = 1024;               // displaced sphere: 2 * segments * (rings - 1) triangles
   int mesh_rings = 513;
-  int spp = 8;                            // tracer samples per pixel
+  int spp = 8;  // tracer samples per pixel
   int render_iterations = 2;
-  double raw_min_time = 0.5;              // seconds per raw measurement
-  int threads = 0;                        // resolved to all hardware threads
+  double raw_min_time = 0.5;  // seconds per raw measurement
+  int threads = 0;            // resolved to all hardware threads
 };
 Settings g_settings;
 
@@ -95,7 +95,8 @@ struct Sample {
 double process_cpu_seconds() {
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
-  return double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+  return double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+         1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
 }
 // results[scene][measurement]: one entry per repetition; the summary takes medians.
 std::map<std::string, std::map<std::string, std::vector<Sample>>> g_results;
@@ -164,7 +165,8 @@ RenderGeometry render_geometry(const vesper::SceneDescription& desc, const vespe
       for (const auto& p : m.positions) rm.positions.push_back(pt(p));
       // Same rule as vesper::Accel: degenerate triangles are dropped.
       for (const auto& t : m.triangles) {
-        const Vec3 c = cross(rm.positions[t[1]] - rm.positions[t[0]], rm.positions[t[2]] - rm.positions[t[0]]);
+        const Vec3 c =
+            cross(rm.positions[t[1]] - rm.positions[t[0]], rm.positions[t[2]] - rm.positions[t[0]]);
         if (length_squared(c) > 0.f && is_finite(c)) rm.triangles.push_back(t);
       }
       if (!rm.triangles.empty()) g.meshes.push_back(std::move(rm));
@@ -173,7 +175,9 @@ RenderGeometry render_geometry(const vesper::SceneDescription& desc, const vespe
   for (const auto& l : desc.lights)  // quad emitters are surfaces too
     if (const auto* q = std::get_if<vesper::QuadLightDesc>(&l.light))
       g.quads.push_back({pt(q->corner), vec(q->edge1), vec(q->edge2)});
-  std::erase_if(g.quads, [](const RenderGeometry::Quad& q) { return !(length_squared(cross(q.e1, q.e2)) > 0.f); });
+  std::erase_if(g.quads, [](const RenderGeometry::Quad& q) {
+    return !(length_squared(cross(q.e1, q.e2)) > 0.f);
+  });
   return g;
 }
 
@@ -190,19 +194,19 @@ class RawEmbree {
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
     for (const auto& q : g.quads) {
       RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_QUAD);
-      auto* v = static_cast<float*>(
-          rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
       const Vec3 p[4] = {q.corner, q.corner + q.e1, q.corner + q.e1 + q.e2, q.corner + q.e2};
       for (int k = 0; k < 4; ++k) std::memcpy(v + 3 * k, &p[k], 3 * sizeof(float));
-      auto* idx = static_cast<unsigned*>(
-          rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
+      auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+          geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
       for (unsigned k = 0; k < 4; ++k) idx[k] = k;
       attach(geom);
     }
     for (const auto& s : g.spheres) {
       RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-      auto* v = static_cast<float*>(
-          rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
       v[0] = s.center.x;
       v[1] = s.center.y;
       v[2] = s.center.z;
@@ -211,10 +215,10 @@ class RawEmbree {
     }
     for (const auto& m : g.meshes) {
       RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                                 sizeof(Vec3), m.positions.size());
-      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
-                                 3 * sizeof(uint32_t), m.triangles.size());
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                 m.positions.data(), 0, sizeof(Vec3), m.positions.size());
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                 m.triangles.data(), 0, 3 * sizeof(uint32_t), m.triangles.size());
       attach(geom);
     }
     rtcCommitScene(scene_);
@@ -262,7 +266,8 @@ std::vector<RayRec> coherent_rays(const vesper::Scene& scene, size_t count) {
                 const int px = std::min(x, w - 1), py = std::min(y, h - 1);
                 vesper::Sampler smp(99, uint64_t(py) * uint64_t(w) + uint64_t(px), s);
                 const vesper::Vec2 j = smp.next2();
-                const vesper::Ray r = scene.camera.generate_ray(float(px) + j.x, float(py) + j.y, smp.next2());
+                const vesper::Ray r =
+                    scene.camera.generate_ray(float(px) + j.x, float(py) + j.y, smp.next2());
                 rays.push_back({r.origin, r.dir});
               }
   }
@@ -283,18 +288,21 @@ std::vector<RayRec> incoherent_surface_rays(const RenderGeometry& g, size_t coun
   }
   for (const auto& m : g.meshes)
     for (const auto& t : m.triangles)
-      tris.push_back({m.positions[t[0]], m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]});
+      tris.push_back({m.positions[t[0]], m.positions[t[1]] - m.positions[t[0]],
+                      m.positions[t[2]] - m.positions[t[0]]});
   std::vector<double> cdf;
   cdf.reserve(tris.size() + g.spheres.size());
   double total = 0;
   for (const auto& t : tris) cdf.push_back(total += 0.5 * double(length(cross(t.e1, t.e2))));
-  for (const auto& s : g.spheres) cdf.push_back(total += 4.0 * std::numbers::pi * double(s.radius) * s.radius);
+  for (const auto& s : g.spheres)
+    cdf.push_back(total += 4.0 * std::numbers::pi * double(s.radius) * s.radius);
 
   std::vector<RayRec> rays(count);
   tbb::parallel_for(size_t(0), count, [&](size_t i) {
     vesper::Sampler smp(1234, i, 0);
     const double pick = double(smp.next1()) * total;
-    const size_t k = std::min(size_t(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()), cdf.size() - 1);
+    const size_t k = std::min(size_t(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()),
+                              cdf.size() - 1);
     const Vec3 d = vesper::sample_uniform_sphere(smp.next2());
     Vec3 p, n;
     if (k < tris.size()) {
@@ -365,13 +373,16 @@ vesper::MeshShapeDesc displaced_sphere(Vec3d center, double radius, int segments
   };
   auto pos = [&](double theta, double phi) {
     const double r = r_of(theta, phi);
-    return center + Vec3d(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)) * r;
+    return center + Vec3d(std::sin(theta) * std::cos(phi), std::cos(theta),
+                          std::sin(theta) * std::sin(phi)) *
+                        r;
   };
   vesper::MeshShapeDesc m;
   m.source = "procedural displaced sphere";
   const double pi = std::numbers::pi;
   for (int i = 1; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) m.positions.push_back(pos(pi * i / rings, 2 * pi * j / segments));
+    for (int j = 0; j < segments; ++j)
+      m.positions.push_back(pos(pi * i / rings, 2 * pi * j / segments));
   const uint32_t north = uint32_t(m.positions.size());
   m.positions.push_back(center + Vec3d(0, radius, 0));
   const uint32_t south = uint32_t(m.positions.size());
@@ -383,7 +394,8 @@ vesper::MeshShapeDesc displaced_sphere(Vec3d center, double radius, int segments
       m.triangles.push_back({v(i, j), v(i, j + 1), v(i + 1, j)});
       m.triangles.push_back({v(i, j + 1), v(i + 1, j + 1), v(i + 1, j)});
     }
-  for (int j = 0; j < segments; ++j) m.triangles.push_back({v(rings - 1, j), v(rings - 1, j + 1), south});
+  for (int j = 0; j < segments; ++j)
+    m.triangles.push_back({v(rings - 1, j), v(rings - 1, j + 1), south});
   return m;
 }
 
@@ -411,15 +423,16 @@ vesper::SceneDescription dense_mesh_scene(int segments, int rings) {
   auto quad = [&](Vec3d c, Vec3d e1, Vec3d e2, uint32_t m) {
     d.shapes.push_back({vesper::QuadShapeDesc{c, e1, e2}, m});
   };
-  quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white);   // floor
-  quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white);   // ceiling
-  quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white);   // back
-  quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, red);     // left
-  quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green);    // right
+  quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white);  // floor
+  quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white);  // ceiling
+  quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white);  // back
+  quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, red);    // left
+  quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green);   // right
   d.shapes.push_back({displaced_sphere({0, 0.62, 0}, 0.55, segments, rings), white});
-  d.lights.push_back({vesper::QuadLightDesc{{-0.24, 1.98, -0.22}, {0.48, 0, 0}, {0, 0, 0.38},
-                                            vesper::Rgb(17.f, 12.f, 4.f)},
-                      ""});
+  d.lights.push_back(
+      {vesper::QuadLightDesc{
+           {-0.24, 1.98, -0.22}, {0.48, 0, 0}, {0, 0, 0.38}, vesper::Rgb(17.f, 12.f, 4.f)},
+       ""});
   return d;
 }
 
@@ -434,10 +447,11 @@ std::unique_ptr<BenchScene> make_bench_scene(std::string name, vesper::SceneDesc
   bs->coherent = coherent_rays(bs->scene, n);
   bs->incoherent = incoherent_surface_rays(bs->geometry, n);
   bs->incoherent_volume = incoherent_volume_rays(bs->geometry, n);
-  g_scene_info[bs->name] = std::to_string(bs->geometry.primitives()) + " primitives (accel: " +
-                           std::to_string(bs->scene.accel->primitive_count()) + "), film " +
-                           std::to_string(bs->scene.film.width) + "x" + std::to_string(bs->scene.film.height) +
-                           ", max_depth " + std::to_string(bs->scene.render.max_depth);
+  g_scene_info[bs->name] =
+      std::to_string(bs->geometry.primitives()) +
+      " primitives (accel: " + std::to_string(bs->scene.accel->primitive_count()) + "), film " +
+      std::to_string(bs->scene.film.width) + "x" + std::to_string(bs->scene.film.height) +
+      ", max_depth " + std::to_string(bs->scene.render.max_depth);
   return bs;
 }
 
@@ -546,7 +560,8 @@ uint64_t raw_intersect16(RTCScene scene, const std::vector<RayRec>& rays) {
 uint64_t accel_intersect(const vesper::Accel& accel, const std::vector<RayRec>& rays) {
   return parallel_trace(rays.size(), [&](size_t b, size_t e) {
     uint64_t hits = 0;
-    for (size_t i = b; i < e; ++i) hits += accel.intersect(vesper::Ray{rays[i].o, rays[i].d}).has_value();
+    for (size_t i = b; i < e; ++i)
+      hits += accel.intersect(vesper::Ray{rays[i].o, rays[i].d}).has_value();
     return hits;
   });
 }
@@ -603,9 +618,8 @@ void bench_render(benchmark::State& state, const BenchScene& bs) {
 void register_scene(const BenchScene& bs) {
   const std::string& s = bs.name;
   auto reg = [&](const std::string& what, size_t rays, auto run) {
-    auto* b = benchmark::RegisterBenchmark((s + "/" + what).c_str(), [=](benchmark::State& st) {
-      bench_rays(st, rays, run);
-    });
+    auto* b = benchmark::RegisterBenchmark(
+        (s + "/" + what).c_str(), [=](benchmark::State& st) { bench_rays(st, rays, run); });
     b->UseManualTime()->Unit(benchmark::kMillisecond);
     if (g_settings.quick)
       b->Iterations(1);
@@ -624,7 +638,9 @@ void register_scene(const BenchScene& bs) {
   reg("accel/intersect/incoherent", inc->size(), [=] { return accel_intersect(*accel, *inc); });
   auto* r = benchmark::RegisterBenchmark((s + "/tracer/render").c_str(),
                                          [&bs](benchmark::State& st) { bench_render(st, bs); });
-  r->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(g_settings.quick ? 1 : g_settings.render_iterations);
+  r->UseManualTime()
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(g_settings.quick ? 1 : g_settings.render_iterations);
 }
 
 // ---------------------------------------------------------------- summary
@@ -654,8 +670,10 @@ void print_summary(const std::vector<std::string>& scenes) {
   size_t reps = 0;
   for (auto& [scene, m] : g_results)
     for (auto& [what, v] : m) reps = std::max(reps, v.size());
-  std::printf("\n=== Ray throughput summary (%d threads, Embree %s, median of %zu repetition(s)%s) ===\n",
-              g_settings.threads, RTC_VERSION_STRING, reps, g_settings.quick ? ", QUICK MODE: smoke test only, figures not representative" : "");
+  std::printf(
+      "\n=== Ray throughput summary (%d threads, Embree %s, median of %zu repetition(s)%s) ===\n",
+      g_settings.threads, RTC_VERSION_STRING, reps,
+      g_settings.quick ? ", QUICK MODE: smoke test only, figures not representative" : "");
   for (const auto& s : scenes) std::printf("  %-11s %s\n", s.c_str(), g_scene_info[s].c_str());
   std::printf("\n%-44s", "Mrays/s");
   for (const auto& s : scenes) std::printf("%16s", s.c_str());
@@ -677,27 +695,37 @@ void print_summary(const std::vector<std::string>& scenes) {
   }
   std::printf("%-44s", "hit fraction: coherent / incoherent");
   for (const auto& s : scenes) {
-    auto hf = [&](const char* k) { return median(s, k, [](const Sample& m) { return m.hit_fraction; }); };
+    auto hf = [&](const char* k) {
+      return median(s, k, [](const Sample& m) { return m.hit_fraction; });
+    };
     std::printf("%16s", (cell(hf("raw/intersect1/coherent"), "%.2f") + " / " +
                          cell(hf("raw/intersect1/incoherent"), "%.2f"))
                             .c_str());
   }
   std::printf("\n%-44s", "cores busy: raw coh / raw incoh / tracer");
   for (const auto& s : scenes) {
-    auto cores = [&](const char* k) { return median(s, k, [](const Sample& m) { return m.cores; }); };
-    std::printf("%16s", (cell(cores("raw/intersect1/coherent"), "%.1f") + "/" + cell(cores("raw/intersect1/incoherent"), "%.1f") +
-                         "/" + cell(cores("tracer/render"), "%.1f"))
+    auto cores = [&](const char* k) {
+      return median(s, k, [](const Sample& m) { return m.cores; });
+    };
+    std::printf("%16s", (cell(cores("raw/intersect1/coherent"), "%.1f") + "/" +
+                         cell(cores("raw/intersect1/incoherent"), "%.1f") + "/" +
+                         cell(cores("tracer/render"), "%.1f"))
                             .c_str());
   }
   std::printf("\n%-44s", "tracer rays per camera sample");
-  for (const auto& s : scenes) std::printf("%16s", cell(median(s, "tracer/render", [](const Sample& m) { return m.rays_per_sample; }), "%.2f").c_str());
+  for (const auto& s : scenes)
+    std::printf(
+        "%16s",
+        cell(median(s, "tracer/render", [](const Sample& m) { return m.rays_per_sample; }), "%.2f")
+            .c_str());
   std::printf("\n\nratio (share of the physical limit the tracer keeps)\n");
   const char* ratios[][3] = {
       {"tracer/render", "raw/intersect1/incoherent", "tracer / raw incoherent (surface)"},
       {"tracer/render", "raw/intersect1/incoh_volume", "tracer / raw incoherent (volume)"},
       {"tracer/render", "raw/intersect1/coherent", "tracer / raw coherent"},
       {"tracer/render", "raw/intersect16/coherent", "tracer / raw coherent packets (16)"},
-      {"accel/intersect/incoherent", "raw/intersect1/incoherent", "Accel wrapper / raw, incoherent"},
+      {"accel/intersect/incoherent", "raw/intersect1/incoherent",
+       "Accel wrapper / raw, incoherent"},
       {"accel/intersect/coherent", "raw/intersect1/coherent", "Accel wrapper / raw, coherent"},
   };
   for (const auto& row : ratios) {
@@ -732,12 +760,15 @@ int main(int argc, char** argv) {
   // processes hits raw and tracer measurements alike; the summary takes medians.
   // Both can be overridden on the command line.
   auto has_flag = [&](const char* prefix) {
-    return std::any_of(args.begin(), args.end(), [&](const char* a) { return std::strncmp(a, prefix, std::strlen(prefix)) == 0; });
+    return std::any_of(args.begin(), args.end(), [&](const char* a) {
+      return std::strncmp(a, prefix, std::strlen(prefix)) == 0;
+    });
   };
   static char reps_flag[] = "--benchmark_repetitions=3";
   static char interleave_flag[] = "--benchmark_enable_random_interleaving=true";
   if (!quick && !has_flag("--benchmark_repetitions")) args.push_back(reps_flag);
-  if (!quick && !has_flag("--benchmark_enable_random_interleaving")) args.push_back(interleave_flag);
+  if (!quick && !has_flag("--benchmark_enable_random_interleaving"))
+    args.push_back(interleave_flag);
   int nargs = int(args.size());
   if (quick) {
     g_settings.quick = true;
@@ -746,7 +777,8 @@ int main(int argc, char** argv) {
     g_settings.mesh_rings = 129;
     g_settings.spp = 1;
   }
-  g_settings.threads = tbb::this_task_arena::max_concurrency();  // what vesper::render uses for threads = 0
+  g_settings.threads =
+      tbb::this_task_arena::max_concurrency();  // what vesper::render uses for threads = 0
 
   benchmark::Initialize(&nargs, args.data());
   if (benchmark::ReportUnrecognizedArguments(nargs, args.data())) return 1;
@@ -754,10 +786,10 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<BenchScene>> scenes;
   try {
     const auto t0 = Clock::now();
+    scenes.push_back(make_bench_scene("cornell", vesper::load_scene(std::string(VESPER_SOURCE_DIR) +
+                                                                    "/scenes/cornell/scene.json")));
     scenes.push_back(make_bench_scene(
-        "cornell", vesper::load_scene(std::string(VESPER_SOURCE_DIR) + "/scenes/cornell/scene.json")));
-    scenes.push_back(
-        make_bench_scene("dense-mesh", dense_mesh_scene(g_settings.mesh_segments, g_settings.mesh_rings)));
+        "dense-mesh", dense_mesh_scene(g_settings.mesh_segments, g_settings.mesh_rings)));
     std::fprintf(stderr, "scenes built and ray sets generated in %.2f s\n",
                  std::chrono::duration<double>(Clock::now() - t0).count());
   } catch (const std::exception& e) {

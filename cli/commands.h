@@ -34,8 +34,8 @@ struct CompCommandOptions {
   bool quiet = false;
   bool has_quick_flags() const {
     return !layers.empty() || no_beauty || exposure || saturation || cdl_slope || cdl_offset ||
-           cdl_power || look || config || display || view || output || exr || hist ||
-           hist_plot || bit_depth;
+           cdl_power || look || config || display || view || output || exr || hist || hist_plot ||
+           bit_depth;
   }
 };
 int run_comp(const CompCommandOptions& options);

@@ -50,7 +50,8 @@ nlohmann::json parse_triple(const std::string& s, const std::string& flag) {
     const double v = parse_number(parts[0], flag);
     return nlohmann::json::array({v, v, v});
   }
-  if (parts.size() != 3) throw CompError(flag + ": expected r,g,b (or one number), got '" + s + "'");
+  if (parts.size() != 3)
+    throw CompError(flag + ": expected r,g,b (or one number), got '" + s + "'");
   return nlohmann::json::array(
       {parse_number(parts[0], flag), parse_number(parts[1], flag), parse_number(parts[2], flag)});
 }
@@ -113,14 +114,22 @@ std::string flag_message(const std::string& what, const CompCommandOptions& o) {
   const std::string path = what.substr(prefix.size(), end - prefix.size());
   const std::string rest = what.substr(end + 2);
   static const std::pair<const char*, const char*> kFlags[] = {
-      {"/inputs/frame", "input"},          {"/outputs/image", "-o"},
-      {"/outputs/exr", "--exr"},           {"/outputs/histogram_plot", "--hist-plot"},
-      {"/outputs/histogram", "--hist"},    {"/outputs/bit_depth", "--bit-depth"},
-      {"/outputs", "outputs"},             {"/grade/exposure", "--exposure"},
-      {"/grade/cdl/slope", "--cdl-slope"}, {"/grade/cdl/offset", "--cdl-offset"},
-      {"/grade/cdl/power", "--cdl-power"}, {"/grade/cdl/saturation", "--saturation"},
-      {"/grade/look_lut", "--look"},       {"/display/config", "--config"},
-      {"/display/display", "--display"},   {"/display/view", "--view"}};
+      {"/inputs/frame", "input"},
+      {"/outputs/image", "-o"},
+      {"/outputs/exr", "--exr"},
+      {"/outputs/histogram_plot", "--hist-plot"},
+      {"/outputs/histogram", "--hist"},
+      {"/outputs/bit_depth", "--bit-depth"},
+      {"/outputs", "outputs"},
+      {"/grade/exposure", "--exposure"},
+      {"/grade/cdl/slope", "--cdl-slope"},
+      {"/grade/cdl/offset", "--cdl-offset"},
+      {"/grade/cdl/power", "--cdl-power"},
+      {"/grade/cdl/saturation", "--saturation"},
+      {"/grade/look_lut", "--look"},
+      {"/display/config", "--config"},
+      {"/display/display", "--display"},
+      {"/display/view", "--view"}};
   for (const auto& [p, flag] : kFlags)
     if (path.rfind(p, 0) == 0) return prefix + flag + ": " + rest;
   if (path.rfind("/layers/", 0) == 0) {
@@ -145,7 +154,8 @@ int run_comp(const CompCommandOptions& o) {
   try {
     if (is_recipe(o.input)) {
       if (o.has_quick_flags())
-        throw CompError(o.input + ": a recipe file takes no layer/grade/display/output flags "
+        throw CompError(o.input +
+                        ": a recipe file takes no layer/grade/display/output flags "
                         "(put them in the recipe)");
       recipe = load_recipe(o.input);
     } else {

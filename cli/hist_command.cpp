@@ -35,7 +35,8 @@ struct Measured {
   std::optional<Histogram> log2;
 };
 
-Measured measure(const std::string& path, LumaWeights weights, bool want_log2, const DisplayDesc& view) {
+Measured measure(const std::string& path, LumaWeights weights, bool want_log2,
+                 const DisplayDesc& view) {
   HistogramSource src = read_histogram_source(path);
   Measured m;
   m.path = path;
@@ -53,7 +54,8 @@ Measured measure(const std::string& path, LumaWeights weights, bool want_log2, c
     if (want_log2) {
       RgbaImage linear = src.image;
       for (size_t i = 0; i < linear.pixel_count(); ++i)
-        for (int c = 0; c < 3; ++c) linear.pixels[i * 4 + size_t(c)] = float(srgb_decode(linear.pixels[i * 4 + size_t(c)]));
+        for (int c = 0; c < 3; ++c)
+          linear.pixels[i * 4 + size_t(c)] = float(srgb_decode(linear.pixels[i * 4 + size_t(c)]));
       m.log2 = log2_histogram(linear, weights);
     }
   }
@@ -75,7 +77,8 @@ std::string comparison(const char* what, const Histogram& h, const Histogram& re
   s += fmt::format("distance (Wasserstein-1, {}): {:.6g}{}\n", what, wasserstein1(h, ref),
                    h.domain == HistogramDomain::Log2 ? " stops" : "");
   try {
-    s += fmt::format("matching exposure ({}): {:+.3f} stops\n", what, matching_exposure_shift(h, ref));
+    s += fmt::format("matching exposure ({}): {:+.3f} stops\n", what,
+                     matching_exposure_shift(h, ref));
   } catch (const CompError& e) {
     s += fmt::format("matching exposure ({}): undefined ({})\n", what, e.what());
   }
@@ -124,17 +127,20 @@ int run_hist(const HistCommandOptions& o) {
     const auto w = luma_coefficients(*weights);
     std::string out = fmt::format("{}: {}x{} {}, {}\n", img.path, img.width, img.height, img.format,
                                   img.scene_linear ? "scene-linear" : "display-referred");
-    out += fmt::format("luminance: {} ({:g} R + {:g} G + {:g} B)\n", luma_weights_name(*weights), w[0], w[1], w[2]);
-    out += section(img.scene_linear ? fmt::format("display histogram (after OCIO {} / {}):", o.display, o.view).c_str()
-                                    : "display histogram:",
-                   img.display);
+    out += fmt::format("luminance: {} ({:g} R + {:g} G + {:g} B)\n", luma_weights_name(*weights),
+                       w[0], w[1], w[2]);
+    out += section(
+        img.scene_linear
+            ? fmt::format("display histogram (after OCIO {} / {}):", o.display, o.view).c_str()
+            : "display histogram:",
+        img.display);
     if (img.log2)
       out += section(img.scene_linear ? "log2 luminance (stops, scene-linear):"
                                       : "log2 luminance (stops, sRGB-decoded):",
                      *img.log2);
     if (ref) {
-      out += fmt::format("reference {}: {}x{} {}, {}\n", ref->path, ref->width, ref->height, ref->format,
-                         ref->scene_linear ? "scene-linear" : "display-referred");
+      out += fmt::format("reference {}: {}x{} {}, {}\n", ref->path, ref->width, ref->height,
+                         ref->format, ref->scene_linear ? "scene-linear" : "display-referred");
       out += comparison("display", img.display, ref->display);
       if (img.log2 && ref->log2) out += comparison("log2", *img.log2, *ref->log2);
     }

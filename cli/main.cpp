@@ -80,15 +80,20 @@ int main(int argc, char** argv) {
   vi->add_option("file", vdb_info.file, ".vdb file")->required();
 
   vesper::cli::HistCommandOptions hist;
-  auto* hi = app.add_subcommand(
-      "hist", "Luminosity histogram of an image; with --ref, the distance to a reference and the matching exposure");
-  hi->add_option("image", hist.image, "Image (PNG/JPEG/TIFF display-referred; EXR scene-linear)")->required();
+  auto* hi = app.add_subcommand("hist",
+                                "Luminosity histogram of an image; with --ref, the distance to a "
+                                "reference and the matching exposure");
+  hi->add_option("image", hist.image, "Image (PNG/JPEG/TIFF display-referred; EXR scene-linear)")
+      ->required();
   hi->add_option("--ref", hist.reference, "Reference image to compare with");
-  hi->add_option("--weights", hist.weights, "Luminance weights: rec709 (default) or luminosity (0.30/0.59/0.11)");
+  hi->add_option("--weights", hist.weights,
+                 "Luminance weights: rec709 (default) or luminosity (0.30/0.59/0.11)");
   hi->add_option("--json", hist.json, "Write the histogram as JSON");
   hi->add_option("--plot", hist.plot, "Write a PNG plot of the histogram");
-  hi->add_flag("--log2", hist.log2, "Primary histogram in log2 luminance (stops) instead of display values");
-  hi->add_option("--config", hist.ocio_config, "OCIO config for EXR inputs (default: $OCIO, else bundled)");
+  hi->add_flag("--log2", hist.log2,
+               "Primary histogram in log2 luminance (stops) instead of display values");
+  hi->add_option("--config", hist.ocio_config,
+                 "OCIO config for EXR inputs (default: $OCIO, else bundled)");
   hi->add_option("--display", hist.display, "OCIO display for EXR inputs (default sRGB)");
   hi->add_option("--view", hist.view, "OCIO view for EXR inputs (default Standard)");
 

@@ -29,8 +29,8 @@ int run_vdb_cloud(const VdbCloudOptions& o) {
     write_vdb_fog_volume(v, o.grid, o.output);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!o.quiet)
-      spdlog::info("cloud: {}x{}x{} voxels of {:g} units, seed {}, grid '{}' written in {:.2f} s", v.nx, v.ny, v.nz,
-                   v.voxel_size, p.seed, o.grid, s);
+      spdlog::info("cloud: {}x{}x{} voxels of {:g} units, seed {}, grid '{}' written in {:.2f} s",
+                   v.nx, v.ny, v.nz, v.voxel_size, p.seed, o.grid, s);
   } catch (const std::invalid_argument& e) {
     spdlog::error("{}", e.what());
     return 2;
@@ -50,23 +50,28 @@ int run_vdb_info(const VdbInfoOptions& o) {
     spdlog::error("{}", e.what());
     return 2;
   }
-  std::string out = fmt::format("{}: {} grid{}\n", o.file, grids.size(), grids.size() == 1 ? "" : "s");
+  std::string out =
+      fmt::format("{}: {} grid{}\n", o.file, grids.size(), grids.size() == 1 ? "" : "s");
   for (const VdbGridInfo& g : grids) {
     out += fmt::format("{} ({}, {})\n", g.name, g.value_type, g.grid_class);
     out += fmt::format("  active voxels: {}\n", g.active_voxels);
     if (g.active_box.empty())
       out += "  active bbox: empty\n";
     else
-      out += fmt::format("  active bbox: [{}, {}, {}] -> [{}, {}, {}] ({} x {} x {})\n", g.active_box.min[0],
-                         g.active_box.min[1], g.active_box.min[2], g.active_box.max[0], g.active_box.max[1],
-                         g.active_box.max[2], g.active_box.max[0] - g.active_box.min[0] + 1,
-                         g.active_box.max[1] - g.active_box.min[1] + 1, g.active_box.max[2] - g.active_box.min[2] + 1);
+      out += fmt::format("  active bbox: [{}, {}, {}] -> [{}, {}, {}] ({} x {} x {})\n",
+                         g.active_box.min[0], g.active_box.min[1], g.active_box.min[2],
+                         g.active_box.max[0], g.active_box.max[1], g.active_box.max[2],
+                         g.active_box.max[0] - g.active_box.min[0] + 1,
+                         g.active_box.max[1] - g.active_box.min[1] + 1,
+                         g.active_box.max[2] - g.active_box.min[2] + 1);
     if (g.has_range)
-      out += fmt::format("  value range: [{:g}, {:g}], background {:g}\n", g.min_value, g.max_value, g.background);
+      out += fmt::format("  value range: [{:g}, {:g}], background {:g}\n", g.min_value, g.max_value,
+                         g.background);
     if (g.linear_transform) {
       const auto& m = g.index_to_world.m;
-      out += fmt::format("  index to world: [{:g} {:g} {:g} {:g}; {:g} {:g} {:g} {:g}; {:g} {:g} {:g} {:g}]\n", m[0],
-                         m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11]);
+      out += fmt::format(
+          "  index to world: [{:g} {:g} {:g} {:g}; {:g} {:g} {:g} {:g}; {:g} {:g} {:g} {:g}]\n",
+          m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11]);
     } else {
       out += "  index to world: non-linear (frustum) transform\n";
     }

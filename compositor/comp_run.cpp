@@ -50,8 +50,8 @@ class FrameFiles {
     for (size_t i = 0; i < files_.size(); ++i) {
       fs::rename(files_[i].first, files_[i].second, ec);
       if (ec) {
-        const std::string msg = "cannot move the finished file to " + files_[i].second.string() +
-                                ": " + ec.message();
+        const std::string msg =
+            "cannot move the finished file to " + files_[i].second.string() + ": " + ec.message();
         // Undo the renames already done: a frame is all or nothing.
         for (size_t j = 0; j < i; ++j) fs::remove(files_[j].second, ec);
         throw CompError(msg);
@@ -78,7 +78,8 @@ void write_display_image(const RgbaImage& display, const CompOutputs& o, const f
                        : o.image_format == ImageFormat::Jpeg ? "jpeg"
                                                              : "tiff";
   auto out = OIIO::ImageOutput::create(format);
-  if (!out) throw CompError(final_path.string() + ": no " + format + " writer: " + OIIO::geterror());
+  if (!out)
+    throw CompError(final_path.string() + ": no " + format + " writer: " + OIIO::geterror());
   const OIIO::TypeDesc type = o.bit_depth == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
   OIIO::ImageSpec spec(display.width, display.height, 3, type);
   if (o.image_format == ImageFormat::Jpeg) spec.attribute("Compression", "jpeg:95");
@@ -132,7 +133,8 @@ CompReport run_comp(const CompRecipe& recipe, const CompProgress& progress) {
   // missing config or an unknown view fails before anything is written.
   const Grader grader(recipe.grade, recipe.display);
   const CompOutputs& out = recipe.outputs;
-  const fs::path histogram_pattern = out.histogram.empty() ? default_histogram_path(out) : out.histogram;
+  const fs::path histogram_pattern =
+      out.histogram.empty() ? default_histogram_path(out) : out.histogram;
 
   const bool sequence = !recipe.frames.empty();
   const size_t total = sequence ? recipe.frames.size() : 1;

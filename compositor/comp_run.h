@@ -17,7 +17,7 @@
 namespace vesper {
 
 struct CompFrameReport {
-  std::optional<long> frame;  // for sequences
+  std::optional<long> frame;                                    // for sequences
   std::filesystem::path image, exr, histogram, histogram_plot;  // written (empty = not asked)
   Histogram display_histogram;  // Rec.709 luminance of the display-referred composite
   int width = 0, height = 0;

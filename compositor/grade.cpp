@@ -18,7 +18,9 @@ namespace vesper {
 
 namespace fs = std::filesystem;
 
-std::string bundled_ocio_config() { return std::string(VESPER_SOURCE_DIR) + "/configs/ocio/config.ocio"; }
+std::string bundled_ocio_config() {
+  return std::string(VESPER_SOURCE_DIR) + "/configs/ocio/config.ocio";
+}
 
 struct Grader::Impl {
   std::string config_path;
@@ -64,7 +66,8 @@ std::vector<std::string> display_names(const OCIO::Config& config) {
 
 std::vector<std::string> view_names(const OCIO::Config& config, const std::string& display) {
   std::vector<std::string> out;
-  for (int i = 0; i < config.getNumViews(display.c_str()); ++i) out.emplace_back(config.getView(display.c_str(), i));
+  for (int i = 0; i < config.getNumViews(display.c_str()); ++i)
+    out.emplace_back(config.getView(display.c_str(), i));
   return out;
 }
 
@@ -76,8 +79,8 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 
 // Exposure (2^e scale), ASC CDL without clamping, then the LUT look, all in
 // the scene_linear colour space the image is already in.
-OCIO::ConstCPUProcessorRcPtr make_grade(const OCIO::ConstConfigRcPtr& config, const std::string& config_path,
-                                        const GradeDesc& grade) {
+OCIO::ConstCPUProcessorRcPtr make_grade(const OCIO::ConstConfigRcPtr& config,
+                                        const std::string& config_path, const GradeDesc& grade) {
   auto group = OCIO::GroupTransform::Create();
   if (grade.exposure != 0.f) {
     if (!std::isfinite(grade.exposure)) throw CompError("grade exposure is not finite");
@@ -97,9 +100,11 @@ OCIO::ConstCPUProcessorRcPtr make_grade(const OCIO::ConstConfigRcPtr& config, co
     const double offset[3] = {c.offset.r, c.offset.g, c.offset.b};
     const double power[3] = {c.power.r, c.power.g, c.power.b};
     for (int i = 0; i < 3; ++i)
-      if (!std::isfinite(slope[i]) || !std::isfinite(offset[i]) || !(power[i] > 0.0) || !std::isfinite(power[i]))
+      if (!std::isfinite(slope[i]) || !std::isfinite(offset[i]) || !(power[i] > 0.0) ||
+          !std::isfinite(power[i]))
         throw CompError("grade cdl: slope and offset must be finite and power > 0");
-    if (!std::isfinite(c.saturation) || c.saturation < 0.f) throw CompError("grade cdl: saturation must be >= 0");
+    if (!std::isfinite(c.saturation) || c.saturation < 0.f)
+      throw CompError("grade cdl: saturation must be >= 0");
     cdl->setStyle(OCIO::CDL_NO_CLAMP);
     cdl->setSlope(slope);
     cdl->setOffset(offset);
@@ -111,7 +116,8 @@ OCIO::ConstCPUProcessorRcPtr make_grade(const OCIO::ConstConfigRcPtr& config, co
     std::error_code ec;
     const fs::path lut = fs::absolute(grade.look_lut, ec);
     std::ifstream probe(lut, std::ios::binary);
-    if (ec || !fs::is_regular_file(lut, ec) || !probe) throw CompError("look LUT not found or unreadable: " + grade.look_lut);
+    if (ec || !fs::is_regular_file(lut, ec) || !probe)
+      throw CompError("look LUT not found or unreadable: " + grade.look_lut);
     auto ft = OCIO::FileTransform::Create();
     ft->setSrc(lut.string().c_str());
     ft->setInterpolation(OCIO::INTERP_BEST);
@@ -123,26 +129,30 @@ OCIO::ConstCPUProcessorRcPtr make_grade(const OCIO::ConstConfigRcPtr& config, co
     // level would use OCIO's fast pow approximation).
     return config->getProcessor(group)->getOptimizedCPUProcessor(OCIO::OPTIMIZATION_LOSSLESS);
   } catch (const OCIO::Exception& e) {
-    if (!grade.look_lut.empty()) throw CompError("look LUT " + grade.look_lut + " could not be loaded: " + e.what());
+    if (!grade.look_lut.empty())
+      throw CompError("look LUT " + grade.look_lut + " could not be loaded: " + e.what());
     throw CompError("grade with OCIO config " + config_path + " failed: " + e.what());
   }
 }
 
 void run_processor(const OCIO::ConstCPUProcessorRcPtr& proc, RgbaImage& image) {
   if (!proc || image.width <= 0 || image.height <= 0) return;
-  if (image.pixels.size() != image.pixel_count() * 4) throw CompError("RgbaImage: pixel buffer size does not match width x height x 4");
+  if (image.pixels.size() != image.pixel_count() * 4)
+    throw CompError("RgbaImage: pixel buffer size does not match width x height x 4");
   const long w = image.width;
   // OCIO's CPU processors are thread-safe; rows are processed in blocks.
-  tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 16), [&](const tbb::blocked_range<int>& rows) {
-    float* start = image.pixels.data() + size_t(rows.begin()) * size_t(w) * 4;
-    OCIO::PackedImageDesc desc(start, w, long(rows.end() - rows.begin()), 4);
-    proc->apply(desc);
-  });
+  tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 16),
+                    [&](const tbb::blocked_range<int>& rows) {
+                      float* start = image.pixels.data() + size_t(rows.begin()) * size_t(w) * 4;
+                      OCIO::PackedImageDesc desc(start, w, long(rows.end() - rows.begin()), 4);
+                      proc->apply(desc);
+                    });
 }
 
 }  // namespace
 
-Grader::Grader(const GradeDesc& grade, const DisplayDesc& display) : impl_(std::make_unique<Impl>()) {
+Grader::Grader(const GradeDesc& grade, const DisplayDesc& display)
+    : impl_(std::make_unique<Impl>()) {
   impl_->config_path = choose_config_path(display);
   impl_->config = load_config(impl_->config_path);
   const auto& config = impl_->config;
@@ -153,12 +163,13 @@ Grader::Grader(const GradeDesc& grade, const DisplayDesc& display) : impl_(std::
                     "' (displays: " + join(displays) + ")");
   const auto views = view_names(*config, display.display);
   if (!contains(views, display.view))
-    throw CompError("OCIO config " + impl_->config_path + ": unknown view '" + display.view + "' for display '" +
-                    display.display + "' (views: " + join(views) + ")");
+    throw CompError("OCIO config " + impl_->config_path + ": unknown view '" + display.view +
+                    "' for display '" + display.display + "' (views: " + join(views) + ")");
 
   auto scene_linear = config->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
   if (!scene_linear)
-    throw CompError("OCIO config " + impl_->config_path + " has no scene_linear role (needed as the compositing space)");
+    throw CompError("OCIO config " + impl_->config_path +
+                    " has no scene_linear role (needed as the compositing space)");
 
   impl_->grade = make_grade(config, impl_->config_path, grade);
 
@@ -168,10 +179,11 @@ Grader::Grader(const GradeDesc& grade, const DisplayDesc& display) : impl_(std::
     dvt->setDisplay(display.display.c_str());
     dvt->setView(display.view.c_str());
     auto proc = config->getProcessor(dvt);
-    if (!proc->isNoOp()) impl_->display = proc->getOptimizedCPUProcessor(OCIO::OPTIMIZATION_DEFAULT);
+    if (!proc->isNoOp())
+      impl_->display = proc->getOptimizedCPUProcessor(OCIO::OPTIMIZATION_DEFAULT);
   } catch (const OCIO::Exception& e) {
-    throw CompError("OCIO config " + impl_->config_path + ": display '" + display.display + "' view '" + display.view +
-                    "' failed: " + e.what());
+    throw CompError("OCIO config " + impl_->config_path + ": display '" + display.display +
+                    "' view '" + display.view + "' failed: " + e.what());
   }
 }
 
@@ -187,6 +199,8 @@ const std::string& Grader::config_path() const { return impl_->config_path; }
 
 std::vector<std::string> Grader::displays() const { return display_names(*impl_->config); }
 
-std::vector<std::string> Grader::views(const std::string& display) const { return view_names(*impl_->config, display); }
+std::vector<std::string> Grader::views(const std::string& display) const {
+  return view_names(*impl_->config, display);
+}
 
 }  // namespace vesper

@@ -24,7 +24,8 @@ struct GradeDesc {
 };
 
 struct DisplayDesc {
-  std::string config;  // path to config.ocio; empty = $OCIO, else the repository's configs/ocio/config.ocio
+  std::string
+      config;  // path to config.ocio; empty = $OCIO, else the repository's configs/ocio/config.ocio
   std::string display = "sRGB";
   std::string view = "Standard";
 };

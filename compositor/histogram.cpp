@@ -30,7 +30,8 @@ double percentile_sorted(const std::vector<double>& sorted, double p) {
 
 // Bins, clipping (at/below lo, at/above hi) and statistics of `values` over
 // [lo, hi]; sorts `values`.
-Histogram build(std::vector<double>& values, HistogramDomain domain, LumaWeights weights, double lo, double hi) {
+Histogram build(std::vector<double>& values, HistogramDomain domain, LumaWeights weights, double lo,
+                double hi) {
   Histogram h;
   h.domain = domain;
   h.weights = weights;
@@ -62,11 +63,12 @@ Histogram build(std::vector<double>& values, HistogramDomain domain, LumaWeights
 
 void require_comparable(const Histogram& a, const Histogram& b, const char* what) {
   if (a.domain != b.domain)
-    throw CompError(fmt::format("{}: histograms of different domains ({} vs {})", what, histogram_domain_name(a.domain),
-                                histogram_domain_name(b.domain)));
+    throw CompError(fmt::format("{}: histograms of different domains ({} vs {})", what,
+                                histogram_domain_name(a.domain), histogram_domain_name(b.domain)));
   if (a.lo != b.lo || a.hi != b.hi || a.bins.size() != b.bins.size())
-    throw CompError(fmt::format("{}: histograms of different ranges ([{:g}, {:g}] x {} vs [{:g}, {:g}] x {})", what,
-                                a.lo, a.hi, a.bins.size(), b.lo, b.hi, b.bins.size()));
+    throw CompError(
+        fmt::format("{}: histograms of different ranges ([{:g}, {:g}] x {} vs [{:g}, {:g}] x {})",
+                    what, a.lo, a.hi, a.bins.size(), b.lo, b.hi, b.bins.size()));
   if (a.count == 0 || b.count == 0) throw CompError(fmt::format("{}: empty histogram", what));
 }
 
@@ -81,13 +83,17 @@ std::string pct(double fraction) {
 
 std::array<double, 3> luma_coefficients(LumaWeights w) {
   switch (w) {
-    case LumaWeights::Luminosity: return {0.30, 0.59, 0.11};
-    case LumaWeights::Rec709: break;
+    case LumaWeights::Luminosity:
+      return {0.30, 0.59, 0.11};
+    case LumaWeights::Rec709:
+      break;
   }
   return {0.2126, 0.7152, 0.0722};
 }
 
-const char* luma_weights_name(LumaWeights w) { return w == LumaWeights::Luminosity ? "luminosity" : "rec709"; }
+const char* luma_weights_name(LumaWeights w) {
+  return w == LumaWeights::Luminosity ? "luminosity" : "rec709";
+}
 
 std::optional<LumaWeights> parse_luma_weights(std::string_view name) {
   if (name == "rec709") return LumaWeights::Rec709;
@@ -95,7 +101,9 @@ std::optional<LumaWeights> parse_luma_weights(std::string_view name) {
   return std::nullopt;
 }
 
-const char* histogram_domain_name(HistogramDomain d) { return d == HistogramDomain::Log2 ? "log2" : "display"; }
+const char* histogram_domain_name(HistogramDomain d) {
+  return d == HistogramDomain::Log2 ? "log2" : "display";
+}
 
 double luminance(float r, float g, float b, LumaWeights weights) {
   const auto w = luma_coefficients(weights);
@@ -124,8 +132,10 @@ Histogram display_histogram(const RgbaImage& img, LumaWeights weights) {
   return build(values, HistogramDomain::Display, weights, 0.0, 1.0);
 }
 
-Histogram log2_histogram(const RgbaImage& img, LumaWeights weights, double lo_stops, double hi_stops) {
-  if (!(hi_stops > lo_stops)) throw CompError(fmt::format("log2 histogram: empty range [{:g}, {:g}]", lo_stops, hi_stops));
+Histogram log2_histogram(const RgbaImage& img, LumaWeights weights, double lo_stops,
+                         double hi_stops) {
+  if (!(hi_stops > lo_stops))
+    throw CompError(fmt::format("log2 histogram: empty range [{:g}, {:g}]", lo_stops, hi_stops));
   std::vector<double> values(img.pixel_count());
   for (size_t i = 0; i < values.size(); ++i) {
     const float* p = &img.pixels[i * 4];
@@ -157,11 +167,14 @@ double wasserstein1(const Histogram& a, const Histogram& b) {
 double matching_exposure_shift(const Histogram& image, const Histogram& reference) {
   if (image.domain != reference.domain)
     throw CompError(fmt::format("matching exposure: histograms of different domains ({} vs {})",
-                                histogram_domain_name(image.domain), histogram_domain_name(reference.domain)));
-  if (image.count == 0 || reference.count == 0) throw CompError("matching exposure: empty histogram");
+                                histogram_domain_name(image.domain),
+                                histogram_domain_name(reference.domain)));
+  if (image.count == 0 || reference.count == 0)
+    throw CompError("matching exposure: empty histogram");
   if (image.domain == HistogramDomain::Log2) {
     if (image.median <= image.lo || reference.median <= reference.lo)
-      throw CompError("matching exposure: a median is at or below the bottom of the log2 range (black)");
+      throw CompError(
+          "matching exposure: a median is at or below the bottom of the log2 range (black)");
     return reference.median - image.median;
   }
   const double img_lin = srgb_decode(image.median), ref_lin = srgb_decode(reference.median);
@@ -178,7 +191,8 @@ nlohmann::json histogram_to_json(const Histogram& h, const Histogram* reference)
     for (const auto& [q, v] : x.percentiles) p[fmt::format("{:g}", q)] = v;
     return json{{"format", "vesper-histogram/1"},
                 {"domain", histogram_domain_name(x.domain)},
-                {"weights", {{"name", luma_weights_name(x.weights)}, {"r", w[0]}, {"g", w[1]}, {"b", w[2]}}},
+                {"weights",
+                 {{"name", luma_weights_name(x.weights)}, {"r", w[0]}, {"g", w[1]}, {"b", w[2]}}},
                 {"range", {x.lo, x.hi}},
                 {"bins", x.bins},
                 {"count", x.count},
@@ -235,16 +249,18 @@ std::string terminal_histogram(const Histogram& h, int width, int height) {
     out += row + "\n";
   }
   const char* unit = h.domain == HistogramDomain::Log2 ? " stops" : "";
-  out += fmt::format("[{:g}, {:g}]{}  median {:.4g}  mean {:.4g}  clipped {} low, {} high  ({} px, {})\n", h.lo,
-                     h.hi, unit, h.median, h.mean, pct(h.clipped_low), pct(h.clipped_high), h.count,
-                     luma_weights_name(h.weights));
+  out += fmt::format(
+      "[{:g}, {:g}]{}  median {:.4g}  mean {:.4g}  clipped {} low, {} high  ({} px, {})\n", h.lo,
+      h.hi, unit, h.median, h.mean, pct(h.clipped_low), pct(h.clipped_high), h.count,
+      luma_weights_name(h.weights));
   return out;
 }
 
 HistogramSource read_histogram_source(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw CompError(path.string() + ": no such file");
-  if (std::filesystem::is_directory(path, ec)) throw CompError(path.string() + ": is a directory, not an image");
+  if (std::filesystem::is_directory(path, ec))
+    throw CompError(path.string() + ": is a directory, not an image");
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) {
     std::string why = OIIO::geterror();

@@ -38,12 +38,12 @@ double srgb_decode(double encoded);
 struct Histogram {
   HistogramDomain domain = HistogramDomain::Display;
   LumaWeights weights = LumaWeights::Rec709;
-  double lo = 0, hi = 1;  // value range of the bins (display: [0,1]; log2: stops)
+  double lo = 0, hi = 1;       // value range of the bins (display: [0,1]; log2: stops)
   std::vector<uint64_t> bins;  // 256
   uint64_t count = 0;          // pixels counted (sum of bins)
   double mean = 0, median = 0;
   std::vector<std::pair<double, double>> percentiles;  // (p, value) for p in 1,5,25,50,75,95,99
-  double clipped_low = 0, clipped_high = 0;  // fractions at/below lo and at/above hi
+  double clipped_low = 0, clipped_high = 0;            // fractions at/below lo and at/above hi
 };
 
 // Luminance of the display-referred pixels, 256 bins over [0, 1]; values
@@ -85,7 +85,8 @@ nlohmann::json histogram_to_json(const Histogram& h, const Histogram* reference 
 // they dwarf the rest), reference outline, quarter gridlines, median markers,
 // clipped fractions as red bars at the sides, a value key strip underneath.
 // Written atomically (temporary file + rename). Throws CompError.
-void write_histogram_png(const Histogram& h, const std::filesystem::path& path, const Histogram* reference = nullptr);
+void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
+                         const Histogram* reference = nullptr);
 // `height` rows of Unicode blocks over `width` columns (bins merged; 1..256),
 // then one line: range, median, mean, clipped fractions.
 std::string terminal_histogram(const Histogram& h, int width = 64, int height = 8);

@@ -24,9 +24,9 @@ constexpr int kX0 = 16, kX1 = 784;  // plot area columns [kX0, kX1): 3 px per bi
 constexpr int kY0 = 16, kY1 = 352;  // plot area rows [kY0, kY1), bars grow up from kY1
 constexpr int kKeyY0 = 358, kKeyY1 = 370;
 
-constexpr Rgb8 kBackground{18, 18, 22}, kPlotArea{28, 28, 34}, kGrid{58, 58, 68}, kFill{185, 185, 192},
-    kEdge{240, 240, 240}, kCapped{235, 130, 90}, kReference{80, 170, 255}, kMedian{255, 200, 60},
-    kClipped{230, 70, 60}, kTick{150, 150, 160};
+constexpr Rgb8 kBackground{18, 18, 22}, kPlotArea{28, 28, 34}, kGrid{58, 58, 68},
+    kFill{185, 185, 192}, kEdge{240, 240, 240}, kCapped{235, 130, 90}, kReference{80, 170, 255},
+    kMedian{255, 200, 60}, kClipped{230, 70, 60}, kTick{150, 150, 160};
 
 struct Canvas {
   std::vector<uint8_t> px = std::vector<uint8_t>(size_t(kW) * kH * 3);
@@ -34,7 +34,8 @@ struct Canvas {
     if (x < 0 || y < 0 || x >= kW || y >= kH) return;
     uint8_t* p = &px[(size_t(y) * kW + size_t(x)) * 3];
     alpha = std::clamp(alpha, 0.0, 1.0);
-    for (int i = 0; i < 3; ++i) p[i] = uint8_t(std::lround(p[i] * (1 - alpha) + c[size_t(i)] * alpha));
+    for (int i = 0; i < 3; ++i)
+      p[i] = uint8_t(std::lround(p[i] * (1 - alpha) + c[size_t(i)] * alpha));
   }
   void rect(int x0, int y0, int x1, int y1, Rgb8 c, double alpha = 1.0) {  // [x0,x1) x [y0,y1)
     for (int y = std::max(0, y0); y < std::min(kH, y1); ++y)
@@ -50,7 +51,9 @@ std::vector<double> fractions(const Histogram& h) {
 }
 
 // Height (pixels, fractional) of a fraction under the common scale.
-double bar_height(double f, double top) { return top > 0 ? std::min(1.0, f / top) * double(kY1 - kY0) : 0.0; }
+double bar_height(double f, double top) {
+  return top > 0 ? std::min(1.0, f / top) * double(kY1 - kY0) : 0.0;
+}
 
 int value_to_x(const Histogram& h, double v) {
   const double t = std::clamp((v - h.lo) / (h.hi - h.lo), 0.0, 1.0);
@@ -60,18 +63,21 @@ int value_to_x(const Histogram& h, double v) {
 // The display grey of a position t in [0, 1] along the axis.
 uint8_t key_grey(const Histogram& h, double t) {
   double v = t;
-  if (h.domain == HistogramDomain::Log2) v = srgb_encode(std::min(1.0, std::exp2(h.lo + t * (h.hi - h.lo))));
+  if (h.domain == HistogramDomain::Log2)
+    v = srgb_encode(std::min(1.0, std::exp2(h.lo + t * (h.hi - h.lo))));
   return uint8_t(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
 }
 
 // A small downward triangle in the top margin, pointing at column x.
 void marker(Canvas& c, int x, Rgb8 colour) {
-  for (int row = 0; row < 7; ++row) c.rect(x + 1 - (6 - row), 4 + row, x + 1 + (6 - row) + 1, 5 + row, colour);
+  for (int row = 0; row < 7; ++row)
+    c.rect(x + 1 - (6 - row), 4 + row, x + 1 + (6 - row) + 1, 5 + row, colour);
 }
 
 }  // namespace
 
-void write_histogram_png(const Histogram& h, const std::filesystem::path& path, const Histogram* reference) {
+void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
+                         const Histogram* reference) {
   namespace fs = std::filesystem;
   const int nb = int(h.bins.size());
   if (nb == 0) throw CompError(path.string() + ": cannot plot a histogram without bins");
@@ -132,7 +138,8 @@ void write_histogram_png(const Histogram& h, const std::filesystem::path& path, 
     for (int i = 0; i < nb; ++i) {
       const int xa = kX0 + i * plot_w / nb, xb = kX0 + (i + 1) * plot_w / nb;
       const int y = kY1 - int(std::lround(bar_height(fr[size_t(i)], top)));
-      if (y != prev_y) c.rect(xa, std::min(prev_y, y) - 1, xa + 2, std::max(prev_y, y) + 1, kReference, 0.9);
+      if (y != prev_y)
+        c.rect(xa, std::min(prev_y, y) - 1, xa + 2, std::max(prev_y, y) + 1, kReference, 0.9);
       if (fr[size_t(i)] > 0) c.rect(xa, y - 1, xb, y + 1, kReference, 0.9);
       prev_y = y;
     }
@@ -170,10 +177,12 @@ void write_histogram_png(const Histogram& h, const std::filesystem::path& path, 
 
   // Write next to the target and rename, so a failure leaves nothing behind.
   auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) throw CompError(path.string() + ": cannot write a plot in this format: " + OIIO::geterror());
+  if (!out)
+    throw CompError(path.string() + ": cannot write a plot in this format: " + OIIO::geterror());
   const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
   OIIO::ImageSpec spec(kW, kH, 3, OIIO::TypeDesc::UINT8);
-  if (!out->open(tmp.string(), spec)) throw CompError(path.string() + ": cannot write the plot: " + out->geterror());
+  if (!out->open(tmp.string(), spec))
+    throw CompError(path.string() + ": cannot write the plot: " + out->geterror());
   const bool ok = out->write_image(OIIO::TypeDesc::UINT8, c.px.data());
   const bool closed = out->close();
   std::error_code ec;

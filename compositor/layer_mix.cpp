@@ -76,8 +76,8 @@ RgbaImage extract_layer(const LayeredImage& image, const std::string& layer,
                         const std::string& source) {
   LayerChannels lc;
   if (!find_layer(image, layer, lc)) {
-    throw CompError("no layer '" + layer + "' in " + source + " (layers: " +
-                    join(list_layers(image)) + ")");
+    throw CompError("no layer '" + layer + "' in " + source +
+                    " (layers: " + join(list_layers(image)) + ")");
   }
   RgbaImage out(image.width, image.height);
   const size_t nc = image.channel_count();

@@ -16,7 +16,8 @@ std::vector<std::string> list_layers(const LayeredImage& image);
 // RGB of the layer, A from `<layer>.A` (or `A` for beauty) if present, else 0
 // for named layers and 1 for beauty. Throws CompError naming the layer and
 // listing the available ones (`source` names the file in the message).
-RgbaImage extract_layer(const LayeredImage& image, const std::string& layer, const std::string& source);
+RgbaImage extract_layer(const LayeredImage& image, const std::string& layer,
+                        const std::string& source);
 
 enum class BlendMode { Add, Over };
 
@@ -31,6 +32,7 @@ struct LayerOp {
 // Applies the ops in order onto a black, transparent canvas: add = canvas +
 // layer * k; over = layer * k + (1 - layer.A) * canvas (premultiplied "over"),
 // k = gain * tint * 2^exposure. Output alpha: add keeps max(A), over composites A.
-RgbaImage mix_layers(const LayeredImage& image, const std::vector<LayerOp>& ops, const std::string& source);
+RgbaImage mix_layers(const LayeredImage& image, const std::vector<LayerOp>& ops,
+                     const std::string& source);
 
 }  // namespace vesper

@@ -48,8 +48,8 @@ std::vector<long> glob_frames(const fs::path& pattern) {
     if (f.compare(0, prefix.size(), prefix) != 0) continue;
     if (f.compare(f.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
     const std::string digits = f.substr(prefix.size(), f.size() - prefix.size() - suffix.size());
-    if (digits.size() > 12 || !std::all_of(digits.begin(), digits.end(),
-                                           [](char c) { return c >= '0' && c <= '9'; }))
+    if (digits.size() > 12 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
       continue;
     const long frame = std::stol(digits);
     // The canonical spelling only: frame 7 of `####` is 0007, not 07 or 00007.
@@ -104,7 +104,8 @@ CompRecipe parse(const nlohmann::json& doc, const fs::path& base_dir, const std:
   if (inputs.json().empty()) inputs.fail("expected at least one input, got an empty object");
   std::vector<std::string> names = input_order;
   if (names.empty())
-    for (auto it = inputs.json().begin(); it != inputs.json().end(); ++it) names.push_back(it.key());
+    for (auto it = inputs.json().begin(); it != inputs.json().end(); ++it)
+      names.push_back(it.key());
   for (const std::string& name : names) {
     const JsonReader node = inputs.child(name);
     CompInput in;
@@ -118,8 +119,7 @@ CompRecipe parse(const nlohmann::json& doc, const fs::path& base_dir, const std:
       node.fail("a frame pattern ('#') may only appear in the file name");
     if (in.sequence) {
       const std::vector<long> frames = glob_frames(in.path);
-      if (frames.empty())
-        node.fail("no files match the frame pattern " + in.path.string());
+      if (frames.empty()) node.fail("no files match the frame pattern " + in.path.string());
       if (recipe.frame_padding == 0) {
         recipe.frame_padding = int(len);
         recipe.frames = frames;
@@ -224,9 +224,12 @@ CompRecipe parse(const nlohmann::json& doc, const fs::path& base_dir, const std:
     outputs.fail("expected an \"image\" or an \"exr\" output (or both)");
   if (!out.image.empty()) {
     const std::string ext = lower_extension(out.image);
-    if (ext == ".png") out.image_format = ImageFormat::Png;
-    else if (ext == ".jpg" || ext == ".jpeg") out.image_format = ImageFormat::Jpeg;
-    else if (ext == ".tif" || ext == ".tiff") out.image_format = ImageFormat::Tiff;
+    if (ext == ".png")
+      out.image_format = ImageFormat::Png;
+    else if (ext == ".jpg" || ext == ".jpeg")
+      out.image_format = ImageFormat::Jpeg;
+    else if (ext == ".tif" || ext == ".tiff")
+      out.image_format = ImageFormat::Tiff;
     else
       outputs.fail_key("image", "expected a .png, .jpg/.jpeg or .tif/.tiff file, got \"" +
                                     out.image.filename().string() + "\"");

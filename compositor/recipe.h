@@ -15,10 +15,10 @@
 namespace vesper {
 
 struct CompInput {
-  std::string name;                // key in "inputs"
-  std::filesystem::path path;      // resolved; may hold a `#...#` pattern
-  bool sequence = false;           // the path holds a run of '#'
-  std::string json_path;           // "/inputs/<name>", for messages
+  std::string name;            // key in "inputs"
+  std::filesystem::path path;  // resolved; may hold a `#...#` pattern
+  bool sequence = false;       // the path holds a run of '#'
+  std::string json_path;       // "/inputs/<name>", for messages
 };
 
 struct CompLayer {
@@ -30,7 +30,7 @@ struct CompLayer {
 enum class ImageFormat { Png, Jpeg, Tiff };
 
 struct CompOutputs {
-  std::filesystem::path image;           // display-referred 8/16-bit image; empty = none
+  std::filesystem::path image;  // display-referred 8/16-bit image; empty = none
   ImageFormat image_format = ImageFormat::Png;
   int bit_depth = 8;                     // 8 or 16 (JPEG: 8)
   std::filesystem::path exr;             // graded scene-linear float EXR; empty = none

@@ -14,8 +14,12 @@ struct RgbaImage {
 
   RgbaImage() = default;
   RgbaImage(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h) * 4, 0.f) {}
-  float& at(int x, int y, int c) { return pixels[(size_t(y) * size_t(width) + size_t(x)) * 4 + size_t(c)]; }
-  float at(int x, int y, int c) const { return pixels[(size_t(y) * size_t(width) + size_t(x)) * 4 + size_t(c)]; }
+  float& at(int x, int y, int c) {
+    return pixels[(size_t(y) * size_t(width) + size_t(x)) * 4 + size_t(c)];
+  }
+  float at(int x, int y, int c) const {
+    return pixels[(size_t(y) * size_t(width) + size_t(x)) * 4 + size_t(c)];
+  }
   size_t pixel_count() const { return size_t(width) * size_t(height); }
 };
 

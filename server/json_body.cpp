@@ -77,13 +77,15 @@ int64_t JsonObject::integer(const char* key, int64_t def, int64_t min, int64_t m
     throw ApiError(400, std::string("expected an integer, got ") + type_name(v), path(key));
   // Unsigned values above int64 range arrive as number_unsigned.
   if (v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(max))
-    throw ApiError(400, "expected an integer in [" + std::to_string(min) + ", " +
-                            std::to_string(max) + "], got " + v.dump(),
+    throw ApiError(400,
+                   "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+                       "], got " + v.dump(),
                    path(key));
   const int64_t x = v.get<int64_t>();
   if (x < min || x > max)
-    throw ApiError(400, "expected an integer in [" + std::to_string(min) + ", " +
-                            std::to_string(max) + "], got " + std::to_string(x),
+    throw ApiError(400,
+                   "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+                       "], got " + std::to_string(x),
                    path(key));
   return x;
 }
@@ -95,8 +97,9 @@ double JsonObject::number(const char* key, double def, double min, double max) c
     throw ApiError(400, std::string("expected a number, got ") + type_name(v), path(key));
   const double x = v.get<double>();
   if (!(x >= min && x <= max))
-    throw ApiError(400, "expected a number in [" + std::to_string(min) + ", " +
-                            std::to_string(max) + "], got " + v.dump(),
+    throw ApiError(400,
+                   "expected a number in [" + std::to_string(min) + ", " + std::to_string(max) +
+                       "], got " + v.dump(),
                    path(key));
   return x;
 }
@@ -107,9 +110,8 @@ int64_t task_count(const JobSpec& spec) {
 }
 
 JobSpec parse_job_request(const json& body) {
-  const JsonObject o(body, "",
-                     {"name", "scene", "frames", "spp", "samples_per_task", "priority",
-                      "max_attempts"});
+  const JsonObject o(
+      body, "", {"name", "scene", "frames", "spp", "samples_per_task", "priority", "max_attempts"});
   JobSpec spec;
   spec.name = o.opt_string("name").value_or("job");
   if (spec.name.size() > 256) throw ApiError(400, "name longer than 256 characters", "/name");
@@ -117,7 +119,8 @@ JobSpec parse_job_request(const json& body) {
   if (!is_sha256_hex(spec.scene))
     throw ApiError(400,
                    "expected the SHA-256 of an uploaded scene blob (64 lower-case hex digits), "
-                   "got '" + spec.scene.substr(0, 80) + "'",
+                   "got '" +
+                       spec.scene.substr(0, 80) + "'",
                    "/scene");
   const json& frames = o.at("frames");
   if (frames.is_string()) {

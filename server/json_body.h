@@ -28,7 +28,7 @@ class JsonObject {
   std::string string(const char* key) const;  // required, non-empty
   std::optional<std::string> opt_string(const char* key) const;
   int64_t integer(const char* key, int64_t def, int64_t min, int64_t max) const;  // optional
-  double number(const char* key, double def, double min, double max) const;      // optional
+  double number(const char* key, double def, double min, double max) const;       // optional
 
  private:
   const nlohmann::json& j_;

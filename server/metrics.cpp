@@ -18,7 +18,9 @@ std::string prometheus_text(const MetricsSnapshot& m) {
   line("# HELP vesper_leases_granted_total Task leases granted since the server started.");
   line("# TYPE vesper_leases_granted_total counter");
   line("vesper_leases_granted_total " + std::to_string(m.leases_granted));
-  line("# HELP vesper_http_requests_total HTTP requests answered since the server started, by status code.");
+  line(
+      "# HELP vesper_http_requests_total HTTP requests answered since the server started, by "
+      "status code.");
   line("# TYPE vesper_http_requests_total counter");
   for (const auto& [code, n] : m.http_requests_by_code)
     line("vesper_http_requests_total{code=\"" + std::to_string(code) + "\"} " + std::to_string(n));

@@ -151,10 +151,11 @@ struct Server::Impl {
   }
 
   double now() {
-    const double t = config.clock ? config.clock()
-                                  : std::chrono::duration<double>(
-                                        std::chrono::system_clock::now().time_since_epoch())
-                                        .count();
+    const double t =
+        config.clock
+            ? config.clock()
+            : std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+                  .count();
     std::lock_guard lock(clock_mutex);
     last_now = std::max(last_now, t);
     return last_now;
@@ -199,8 +200,8 @@ struct Server::Impl {
       }
       if (json_body && req.body.size() > config.max_json_bytes) {
         send_error(res, 413,
-                   "JSON body of " + std::to_string(req.body.size()) + " bytes exceeds the limit of " +
-                       std::to_string(config.max_json_bytes));
+                   "JSON body of " + std::to_string(req.body.size()) +
+                       " bytes exceeds the limit of " + std::to_string(config.max_json_bytes));
         return;
       }
       try {
@@ -235,10 +236,10 @@ struct Server::Impl {
     const json body = body_of(req);
     const JobSpec spec = parse_job_request(body);
     if (!blobs.exists(spec.scene))
-      throw ApiError(400,
-                     "no blob " + spec.scene + ": upload the scene first (PUT " + kApi +
-                         "/blobs/{sha256})",
-                     "/scene");
+      throw ApiError(
+          400,
+          "no blob " + spec.scene + ": upload the scene first (PUT " + kApi + "/blobs/{sha256})",
+          "/scene");
     const int64_t n = task_count(spec);
     const std::string dry = req.get_param_value("dry_run");
     if (dry == "1" || dry == "true") {
@@ -254,7 +255,8 @@ struct Server::Impl {
       std::lock_guard lock(store_mutex);
       id = store->submit(spec, now());
     }
-    spdlog::info("job {} '{}' submitted: {} frames, {} tasks", id, spec.name, spec.frames.size(), n);
+    spdlog::info("job {} '{}' submitted: {} frames, {} tasks", id, spec.name, spec.frames.size(),
+                 n);
     res.set_header("Location", std::string(kApi) + "/jobs/" + std::to_string(id));
     send_json(res, 201, {{"id", id}, {"task_count", n}});
   }
@@ -364,8 +366,9 @@ struct Server::Impl {
     const std::string worker = o.string("worker_id");
     const double t = now();
     if (!workers.touch(worker, t))
-      throw ApiError(404, "unknown worker '" + worker.substr(0, 80) + "': register first (POST " +
-                              kApi + "/workers/register)",
+      throw ApiError(404,
+                     "unknown worker '" + worker.substr(0, 80) + "': register first (POST " + kApi +
+                         "/workers/register)",
                      "/worker_id");
     std::optional<Lease> l;
     {
@@ -442,12 +445,13 @@ struct Server::Impl {
     const std::string lease_id = o.string("lease_id");
     const std::string result = o.string("result");
     if (!is_sha256_hex(result))
-      throw ApiError(400, "expected the SHA-256 of the uploaded result blob (64 lower-case hex digits)",
+      throw ApiError(400,
+                     "expected the SHA-256 of the uploaded result blob (64 lower-case hex digits)",
                      "/result");
     if (!blobs.exists(result))
-      throw ApiError(400, "no blob " + result + ": upload the result first (PUT " + kApi +
-                              "/blobs/{sha256})",
-                     "/result");
+      throw ApiError(
+          400, "no blob " + result + ": upload the result first (PUT " + kApi + "/blobs/{sha256})",
+          "/result");
     const double t = now();
     bool ok;
     {
@@ -536,7 +540,9 @@ struct Server::Impl {
   void install_routes() {
     const std::string api = kApi;
     auto bind = [this](void (Impl::*fn)(const httplib::Request&, httplib::Response&)) {
-      return [this, fn](const httplib::Request& req, httplib::Response& res) { (this->*fn)(req, res); };
+      return [this, fn](const httplib::Request& req, httplib::Response& res) {
+        (this->*fn)(req, res);
+      };
     };
     auto healthz = [](const httplib::Request&, httplib::Response& res) {
       res.status = 200;
@@ -593,7 +599,8 @@ struct Server::Impl {
     double interval = config.reaper_interval > 0 ? config.reaper_interval
                                                  : std::min(5.0, config.lease_seconds / 4);
     std::unique_lock lk(stop_mutex);
-    while (!stop_cv.wait_for(lk, std::chrono::duration<double>(interval), [&] { return stopped; })) {
+    while (
+        !stop_cv.wait_for(lk, std::chrono::duration<double>(interval), [&] { return stopped; })) {
       lk.unlock();
       try {
         const double t = now();

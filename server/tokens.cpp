@@ -56,8 +56,7 @@ Tokens load_or_create_tokens(const fs::path& file) {
   const fs::path tmp = file.string() + ".tmp." + random_hex(8);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
   if (fd < 0) sys_fail("create " + tmp.string());
-  const bool ok = ::write(fd, text.data(), text.size()) == ssize_t(text.size()) &&
-                  ::fsync(fd) == 0;
+  const bool ok = ::write(fd, text.data(), text.size()) == ssize_t(text.size()) && ::fsync(fd) == 0;
   ::close(fd);
   if (!ok) {
     ::unlink(tmp.c_str());

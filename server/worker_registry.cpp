@@ -72,14 +72,17 @@ void WorkerRegistry::save() const {
 void WorkerRegistry::save_locked() const {
   nlohmann::json arr = nlohmann::json::array();
   for (const auto& [id, w] : workers_)
-    arr.push_back(
-        {{"worker_id", w.id}, {"name", w.name}, {"registered", w.registered}, {"last_seen", w.last_seen}});
+    arr.push_back({{"worker_id", w.id},
+                   {"name", w.name},
+                   {"registered", w.registered},
+                   {"last_seen", w.last_seen}});
   const std::string text = nlohmann::json{{"workers", arr}}.dump(2) + "\n";
   const fs::path tmp = file_.string() + ".tmp";
   {
     const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
     if (fd < 0) throw std::runtime_error("cannot write " + tmp.string());
-    const bool ok = ::write(fd, text.data(), text.size()) == ssize_t(text.size()) && ::fsync(fd) == 0;
+    const bool ok =
+        ::write(fd, text.data(), text.size()) == ssize_t(text.size()) && ::fsync(fd) == 0;
     ::close(fd);
     if (!ok) throw std::runtime_error("cannot write " + tmp.string());
   }

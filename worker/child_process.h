@@ -30,7 +30,7 @@ class ChildProcess {
   // The raw waitpid status; exit_code() is -1 when killed by a signal.
   int raw_status() const { return status_.value_or(0); }
   int exit_code() const;
-  int term_signal() const;  // 0 unless killed by a signal
+  int term_signal() const;              // 0 unless killed by a signal
   std::string describe_status() const;  // "exit code 2", "killed by signal 11 (Segmentation fault)"
   const std::string& stderr_tail() const { return tail_; }
   pid_t pid() const { return pid_; }

@@ -31,7 +31,8 @@ struct Headers {
 }  // namespace
 
 HttpClient::HttpClient(std::string base_url, std::string token, double timeout_seconds)
-    : base_(std::move(base_url)), auth_header_("Authorization: Bearer " + token),
+    : base_(std::move(base_url)),
+      auth_header_("Authorization: Bearer " + token),
       timeout_(timeout_seconds) {
   while (!base_.empty() && base_.back() == '/') base_.pop_back();
   global_init();

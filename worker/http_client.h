@@ -9,7 +9,7 @@
 namespace vesper::worker_detail {
 
 struct HttpResponse {
-  long status = 0;    // 0 = transport error (see error)
+  long status = 0;  // 0 = transport error (see error)
   std::string body;
   std::string error;  // curl's message when status == 0
   bool ok() const { return status >= 200 && status < 300; }

@@ -90,8 +90,8 @@ namespace {
 
 // Sleeps for `seconds` in 50 ms slices; returns false early if stop was requested.
 bool sleep_unless_stopped(const std::atomic<bool>& stop, double seconds) {
-  const auto deadline =
-      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(seconds));
   while (Clock::now() < deadline) {
     if (stop.load()) return false;
     const Clock::duration left = deadline - Clock::now();
@@ -158,7 +158,8 @@ int Worker::run() {
 
   // Jittered exponential back-off: sleep uniform in [b/2, b], b doubling up to the max.
   auto backoff_sleep = [&]() -> bool {
-    w.backoff = w.backoff <= 0 ? cfg.idle_backoff_min : std::min(w.backoff * 2, cfg.idle_backoff_max);
+    w.backoff =
+        w.backoff <= 0 ? cfg.idle_backoff_min : std::min(w.backoff * 2, cfg.idle_backoff_max);
     std::uniform_real_distribution<double> jitter(0.5, 1.0);
     return sleep_unless_stopped(stop_, w.backoff * jitter(w.rng));
   };
@@ -167,8 +168,8 @@ int Worker::run() {
   auto register_worker = [&]() -> int {
     for (;;) {
       if (stop_.load()) return 2;
-      const HttpResponse r =
-          w.http->post_json(std::string(kApi) + "/workers/register", json{{"name", cfg.name}}.dump());
+      const HttpResponse r = w.http->post_json(std::string(kApi) + "/workers/register",
+                                               json{{"name", cfg.name}}.dump());
       if (r.status == 200 || r.status == 201) {
         try {
           std::lock_guard<std::mutex> lock(w.id_mutex);
@@ -230,9 +231,9 @@ int Worker::run() {
 
     // Small helpers bound to this lease.
     auto fail = [&](const std::string& log) {
-      const HttpResponse f = w.http->post_json(
-          std::string(kApi) + "/fail",
-          json{{"lease_id", t.lease_id}, {"log", tail_of(log, kLogTail)}}.dump());
+      const HttpResponse f =
+          w.http->post_json(std::string(kApi) + "/fail",
+                            json{{"lease_id", t.lease_id}, {"log", tail_of(log, kLogTail)}}.dump());
       if (f.status == 409)
         spdlog::info("task {}: fail refused, lease is stale", t.id);
       else if (!f.ok())
@@ -250,9 +251,9 @@ int Worker::run() {
     }
     const fs::path scene_file = cfg.cache_dir / (t.scene + ".json");
     if (worker_detail::sha256_file(scene_file) != t.scene) {
-      const fs::path part = cfg.cache_dir / "tmp" /
-                            (t.scene + "." + w.instance + "." +
-                             std::to_string(++w.render_counter) + ".part");
+      const fs::path part =
+          cfg.cache_dir / "tmp" /
+          (t.scene + "." + w.instance + "." + std::to_string(++w.render_counter) + ".part");
       const HttpResponse g = w.http->get_to_file(std::string(kApi) + "/blobs/" + t.scene, part);
       std::string problem;
       if (g.status != 200)
@@ -262,7 +263,8 @@ int Worker::run() {
                   got.value_or("(unreadable)");
       else
         fs::rename(part, scene_file, ec);
-      if (problem.empty() && ec) problem = "cannot store " + scene_file.string() + ": " + ec.message();
+      if (problem.empty() && ec)
+        problem = "cannot store " + scene_file.string() + ": " + ec.message();
       fs::remove(part, ec);
       if (!problem.empty()) {
         spdlog::error("task {}: {}", t.id, problem);
@@ -272,13 +274,20 @@ int Worker::run() {
     }
 
     // 2. Render in a child process.
-    const fs::path out = cfg.cache_dir / "tmp" /
-                         ("render-" + w.instance + "-" +
-                          std::to_string(++w.render_counter) + ".exr");
-    std::vector<std::string> argv = {cfg.vesper_binary.string(), "render", scene_file.string(),
-                                     "-o", out.string(), "--spp", std::to_string(t.spp),
-                                     "--sample-begin", std::to_string(t.sample_begin),
-                                     "--sample-end", std::to_string(t.sample_end)};
+    const fs::path out =
+        cfg.cache_dir / "tmp" /
+        ("render-" + w.instance + "-" + std::to_string(++w.render_counter) + ".exr");
+    std::vector<std::string> argv = {cfg.vesper_binary.string(),
+                                     "render",
+                                     scene_file.string(),
+                                     "-o",
+                                     out.string(),
+                                     "--spp",
+                                     std::to_string(t.spp),
+                                     "--sample-begin",
+                                     std::to_string(t.sample_begin),
+                                     "--sample-end",
+                                     std::to_string(t.sample_end)};
     try {  // the seed the scene asks for, passed explicitly
       std::ifstream in(scene_file);
       const json scene = json::parse(in);
@@ -308,17 +317,16 @@ int Worker::run() {
     }
     const auto started = Clock::now();
     const std::string duration_key = t.scene + ":" + std::to_string(t.sample_end - t.sample_begin);
-    const double interval =
-        std::max(0.05, std::min(cfg.heartbeat_seconds, t.lease_seconds / 3));
+    const double interval = std::max(0.05, std::min(cfg.heartbeat_seconds, t.lease_seconds / 3));
     bool dropped = false;
     while (!child->wait_for(interval)) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - started).count();
       double progress = 0.5;
       if (auto it = w.durations.find(duration_key); it != w.durations.end() && it->second > 0)
         progress = std::min(0.99, elapsed / it->second);
-      const HttpResponse hb = w.http->post_json(
-          std::string(kApi) + "/heartbeat",
-          json{{"lease_id", t.lease_id}, {"progress", progress}}.dump());
+      const HttpResponse hb =
+          w.http->post_json(std::string(kApi) + "/heartbeat",
+                            json{{"lease_id", t.lease_id}, {"progress", progress}}.dump());
       std::string answer;
       if (hb.status == 200) {
         try {
@@ -373,8 +381,9 @@ int Worker::run() {
       continue;
     }
     for (int tries = 0; tries < 3; ++tries) {
-      const HttpResponse c = w.http->post_json(
-          std::string(kApi) + "/complete", json{{"lease_id", t.lease_id}, {"result", *result}}.dump());
+      const HttpResponse c =
+          w.http->post_json(std::string(kApi) + "/complete",
+                            json{{"lease_id", t.lease_id}, {"result", *result}}.dump());
       if (c.status == 200) {
         spdlog::info("task {}: done in {:.2f} s, result {}", t.id, seconds, *result);
         ++completed_;

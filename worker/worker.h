@@ -12,10 +12,10 @@
 namespace vesper {
 
 struct WorkerConfig {
-  std::string server_url;  // http://host:port (the API is under /api/v1)
-  std::string token;       // the server's worker token
-  std::string name;        // shown in GET /workers (default: hostname)
-  std::filesystem::path cache_dir;     // blob cache (<sha>.json) and render temp files
+  std::string server_url;               // http://host:port (the API is under /api/v1)
+  std::string token;                    // the server's worker token
+  std::string name;                     // shown in GET /workers (default: hostname)
+  std::filesystem::path cache_dir;      // blob cache (<sha>.json) and render temp files
   std::filesystem::path vesper_binary;  // the `vesper` executable used to render in a child process
   double heartbeat_seconds = 5;
   // Jittered exponential back-off while there is no work (or the server is

@@ -30,8 +30,9 @@ int main(int argc, char** argv) {
   none.render.aovs.clear();
   SceneDescription same_pass = full;
   std::erase_if(same_pass.layers, [](const LayerDesc& l) { return l.variant.has_value(); });
-  same_pass.render.aovs = {Aov::Emission,         Aov::DiffuseDirect, Aov::DiffuseIndirect, Aov::SpecularDirect,
-                           Aov::SpecularIndirect, Aov::VolumeDirect,  Aov::VolumeIndirect};
+  same_pass.render.aovs = {Aov::Emission,       Aov::DiffuseDirect,    Aov::DiffuseIndirect,
+                           Aov::SpecularDirect, Aov::SpecularIndirect, Aov::VolumeDirect,
+                           Aov::VolumeIndirect};
   SceneDescription all = same_pass;
   all.layers = full.layers;
 
@@ -53,10 +54,11 @@ int main(int argc, char** argv) {
       c.seconds += f.stats.seconds / repeats;
       c.channels = f.image.channel_count();
     }
-  std::printf("night-room %dx%d, %d spp, mean of %d interleaved runs\n", full.film.width, full.film.height, spp,
-              repeats);
+  std::printf("night-room %dx%d, %d spp, mean of %d interleaved runs\n", full.film.width,
+              full.film.height, spp, repeats);
   std::printf("  %-40s %9s %9s %9s\n", "configuration", "channels", "time [s]", "ratio");
   for (const auto& c : cases)
-    std::printf("  %-40s %9zu %9.3f %8.2fx\n", c.name, c.channels, c.seconds, c.seconds / cases[0].seconds);
+    std::printf("  %-40s %9zu %9.3f %8.2fx\n", c.name, c.channels, c.seconds,
+                c.seconds / cases[0].seconds);
   return 0;
 }

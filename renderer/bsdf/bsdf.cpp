@@ -24,9 +24,12 @@ Rgb bsdf_eval_diffuse(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi) {
   return std::visit(
       [&](const auto& b) -> Rgb {
         using T = std::decay_t<decltype(b)>;
-        if constexpr (std::is_same_v<T, DiffuseBsdf>) return bsdf_detail::eval(b, wo, wi);
-        else if constexpr (std::is_same_v<T, PrincipledBsdf>) return bsdf_detail::eval_diffuse(b, wo, wi);
-        else return Rgb{};
+        if constexpr (std::is_same_v<T, DiffuseBsdf>)
+          return bsdf_detail::eval(b, wo, wi);
+        else if constexpr (std::is_same_v<T, PrincipledBsdf>)
+          return bsdf_detail::eval_diffuse(b, wo, wi);
+        else
+          return Rgb{};
       },
       bsdf);
 }

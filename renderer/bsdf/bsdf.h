@@ -45,10 +45,10 @@ struct PrincipledBsdf {
 using Bsdf = std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf, PrincipledBsdf>;
 
 struct BsdfSample {
-  Rgb f;              // BSDF value (not multiplied by the cosine)
-  Vec3 wi;            // sampled direction, unit length
-  float pdf = 0;      // solid-angle density; for delta lobes the discrete probability
-  bool is_specular = false;       // sampled a delta lobe (f and pdf are "delta" quantities)
+  Rgb f;                     // BSDF value (not multiplied by the cosine)
+  Vec3 wi;                   // sampled direction, unit length
+  float pdf = 0;             // solid-angle density; for delta lobes the discrete probability
+  bool is_specular = false;  // sampled a delta lobe (f and pdf are "delta" quantities)
   bool is_transmission = false;
 };
 

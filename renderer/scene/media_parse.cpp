@@ -42,7 +42,8 @@ HomogeneousMediumDesc parse_homogeneous(JsonReader& node) {
 
 // Loads one grid; a VdbError becomes a SceneError at `grid_key` when the file
 // itself is readable (missing grid, wrong type, bad voxels), else at `file_key`.
-std::shared_ptr<const DensityGrid> load_grid(const JsonReader& node, const std::filesystem::path& path,
+std::shared_ptr<const DensityGrid> load_grid(const JsonReader& node,
+                                             const std::filesystem::path& path,
                                              const std::string& grid, std::string_view grid_key) {
   try {
     return load_vdb_grid(path, grid, /*reject_negative=*/true);
@@ -93,7 +94,8 @@ VdbMediumDesc parse_vdb(JsonReader& node, SceneParseContext& ctx) {
     file.fail("VDB file not found: '" + path.string() + "'");
   }
   m.density = load_grid(node, path, m.grid, "grid");
-  if (!m.emission_grid.empty()) m.emission = load_grid(node, path, m.emission_grid, "emission_grid");
+  if (!m.emission_grid.empty())
+    m.emission = load_grid(node, path, m.emission_grid, "emission_grid");
   ctx.referenced_files.push_back(path);
   return m;
 }

@@ -23,9 +23,9 @@ namespace vesper {
 
 struct CameraDesc {
   Vec3d from{0, 0, 1}, to{0, 0, 0}, up{0, 1, 0};
-  double fov_degrees = 40;      // across the shorter image axis
-  double aperture = 0;          // lens diameter in scene units; 0 = pinhole
-  double focus_distance = 1;    // distance along the view direction to the focal plane
+  double fov_degrees = 40;    // across the shorter image axis
+  double aperture = 0;        // lens diameter in scene units; 0 = pinhole
+  double focus_distance = 1;  // distance along the view direction to the focal plane
 };
 
 enum class FilterType { Box, Gaussian };
@@ -63,8 +63,8 @@ struct DiffuseMaterialDesc {
   Rgb albedo{0.8f};
 };
 struct ConductorMaterialDesc {
-  double roughness = 0;              // perceptual; GGX alpha = roughness^2
-  Rgb eta{0.2f, 0.92f, 1.1f};        // defaults: gold-ish
+  double roughness = 0;        // perceptual; GGX alpha = roughness^2
+  Rgb eta{0.2f, 0.92f, 1.1f};  // defaults: gold-ish
   Rgb k{3.9f, 2.45f, 2.14f};
 };
 struct DielectricMaterialDesc {
@@ -83,7 +83,8 @@ using MaterialDesc = std::variant<DiffuseMaterialDesc, ConductorMaterialDesc,
 struct Transform {
   std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   Vec3d apply_point(const Vec3d& p) const {
-    return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+    return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
+            m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
             m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
   }
 };
@@ -99,7 +100,7 @@ struct SphereShapeDesc {
 struct MeshShapeDesc {
   std::vector<Vec3d> positions;
   std::vector<std::array<uint32_t, 3>> triangles;  // every index < positions.size()
-  std::string source;  // file path or "inline", for messages
+  std::string source;                              // file path or "inline", for messages
 };
 struct ShapeDesc {
   std::variant<QuadShapeDesc, SphereShapeDesc, MeshShapeDesc> geometry;
@@ -120,8 +121,8 @@ struct SpotLightDesc {
   double cone_angle = 30, falloff_start = 25;  // half-angles, degrees; falloff_start <= cone_angle
 };
 struct SunLightDesc {
-  Vec3d direction;  // from the scene toward the sun, normalized by the loader
-  Rgb irradiance;   // measured perpendicular to `direction`
+  Vec3d direction;   // from the scene toward the sun, normalized by the loader
+  Rgb irradiance;    // measured perpendicular to `direction`
   double angle = 0;  // angular diameter in degrees; 0 = delta directional light
 };
 // Lat-long image, row 0 at the top (+Y pole). Pixels linear RGB, finite, >= 0.
@@ -137,7 +138,8 @@ struct EnvironmentLightDesc {
   double rotation = 0;  // degrees about +Y
 };
 struct LightDesc {
-  std::variant<QuadLightDesc, PointLightDesc, SpotLightDesc, SunLightDesc, EnvironmentLightDesc> light;
+  std::variant<QuadLightDesc, PointLightDesc, SpotLightDesc, SunLightDesc, EnvironmentLightDesc>
+      light;
   std::string group;  // empty = no group
 };
 
@@ -183,7 +185,7 @@ struct MediumOverride {
   std::optional<bool> enabled;  // false removes the medium from this variant
 };
 struct VariantDesc {
-  std::map<std::string, MediumOverride> media;  // keys name existing media
+  std::map<std::string, MediumOverride> media;     // keys name existing media
   std::optional<std::vector<std::string>> lights;  // active light groups; unset = all lights
 };
 

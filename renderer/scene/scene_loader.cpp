@@ -320,13 +320,15 @@ SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::p
       const std::string& group = scene.lights.back().group;
       if (group == kDefaultLightGroup) {
         lights->element(i).fail_key(
-            "group", "expected a group name other than \"default\" (the group of the lights "
-                     "without a 'group': leave the key out), got \"default\"");
+            "group",
+            "expected a group name other than \"default\" (the group of the lights "
+            "without a 'group': leave the key out), got \"default\"");
       }
       if (group == kEmissionLightGroup) {
         lights->element(i).fail_key(
-            "group", "expected a group name other than \"emission\" (reserved for emission from "
-                     "media), got \"emission\"");
+            "group",
+            "expected a group name other than \"emission\" (reserved for emission from "
+            "media), got \"emission\"");
       }
     }
   }

@@ -3,17 +3,15 @@
 // own files (shapes, lights, media, transforms, layers). Not a public header.
 #include <filesystem>
 #include <iterator>
-#include <string_view>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "renderer/scene/json_reader.h"
 #include "renderer/scene/aov_names.h"
+#include "renderer/scene/json_reader.h"
 #include "renderer/scene/scene_description.h"
 
 namespace vesper {
-
-
 
 // Light groups with a fixed meaning: the lights without a `group`, and
 // emission from media. Neither may be written as a light's `group`.
@@ -24,7 +22,8 @@ struct SceneParseContext {
   std::string file;                // the scene file, for messages
   std::filesystem::path base_dir;  // relative paths resolve against this
   std::vector<std::string> material_names;
-  std::vector<std::filesystem::path> referenced_files;  // meshes, images and .vdb files, for the hash
+  std::vector<std::filesystem::path>
+      referenced_files;  // meshes, images and .vdb files, for the hash
 
   std::filesystem::path resolve(const std::string& relative) const;
   // Index of the material named by `key`; the error lists the known names.

@@ -31,18 +31,30 @@ std::uint32_t hash3(int x, int y, int z, std::uint32_t seed) {
 // One of the 12 cube-edge gradients (improved noise), dotted with (x,y,z).
 float grad(std::uint32_t h, float x, float y, float z) {
   switch (h % 12u) {
-    case 0: return x + y;
-    case 1: return -x + y;
-    case 2: return x - y;
-    case 3: return -x - y;
-    case 4: return x + z;
-    case 5: return -x + z;
-    case 6: return x - z;
-    case 7: return -x - z;
-    case 8: return y + z;
-    case 9: return -y + z;
-    case 10: return y - z;
-    default: return -y - z;
+    case 0:
+      return x + y;
+    case 1:
+      return -x + y;
+    case 2:
+      return x - y;
+    case 3:
+      return -x - y;
+    case 4:
+      return x + z;
+    case 5:
+      return -x + z;
+    case 6:
+      return x - z;
+    case 7:
+      return -x - z;
+    case 8:
+      return y + z;
+    case 9:
+      return -y + z;
+    case 10:
+      return y - z;
+    default:
+      return -y - z;
   }
 }
 
@@ -81,7 +93,8 @@ float gradient_noise(float x, float y, float z, std::uint32_t seed) {
   const float u = x - fx, v = y - fy, w = z - fz;
   const float a = fade(u), b = fade(v), c = fade(w);
   auto g = [&](int dx, int dy, int dz) {
-    return grad(hash3(ix + dx, iy + dy, iz + dz, seed), u - float(dx), v - float(dy), w - float(dz));
+    return grad(hash3(ix + dx, iy + dy, iz + dz, seed), u - float(dx), v - float(dy),
+                w - float(dz));
   };
   const float x00 = lerp(g(0, 0, 0), g(1, 0, 0), a), x10 = lerp(g(0, 1, 0), g(1, 1, 0), a);
   const float x01 = lerp(g(0, 0, 1), g(1, 0, 1), a), x11 = lerp(g(0, 1, 1), g(1, 1, 1), a);
@@ -103,13 +116,16 @@ float fbm(float x, float y, float z, int octaves, std::uint32_t seed) {
 
 DenseVolume generate_cloud(const CloudParams& p) {
   if (p.resolution < 8 || p.resolution > 1024)
-    throw std::invalid_argument("cloud resolution must be in [8, 1024], got " + std::to_string(p.resolution));
+    throw std::invalid_argument("cloud resolution must be in [8, 1024], got " +
+                                std::to_string(p.resolution));
   if (!(p.voxel_size > 0) || !std::isfinite(p.voxel_size))
     throw std::invalid_argument("cloud voxel size must be positive");
-  if (p.noise_octaves < 0 || p.noise_octaves > 12) throw std::invalid_argument("cloud noise octaves must be in [0, 12]");
+  if (p.noise_octaves < 0 || p.noise_octaves > 12)
+    throw std::invalid_argument("cloud noise octaves must be in [0, 12]");
   if (!(p.noise_amplitude >= 0 && p.noise_amplitude <= 0.3f))
     throw std::invalid_argument("cloud noise amplitude must be in [0, 0.3]");
-  if (p.spheres < 1 || p.spheres > 64) throw std::invalid_argument("cloud sphere count must be in [1, 64]");
+  if (p.spheres < 1 || p.spheres > 64)
+    throw std::invalid_argument("cloud sphere count must be in [1, 64]");
   if (!(p.density_band > 0)) throw std::invalid_argument("cloud density band must be positive");
 
   // Normalised cloud space: x, z in [-1, 1] across the volume, y in [-0.25, 0.75]
@@ -119,8 +135,10 @@ DenseVolume generate_cloud(const CloudParams& p) {
   std::vector<Sphere> spheres{{0.0f, 0.1f, 0.0f, 0.3f}};
   for (int s = 1; s < p.spheres; ++s) {
     const double ang = rng.uniform(0, 2 * M_PI), rad = 0.5 * std::sqrt(rng.uniform());
-    const float r = float(rng.uniform(0.12, 0.24)) * float(1.0 - 0.6 * rad);  // smaller puffs further out
-    spheres.push_back({float(rad * std::cos(ang)) * 1.2f, float(rng.uniform(-0.05, 0.2)) + 0.15f * float(0.5 - rad),
+    const float r =
+        float(rng.uniform(0.12, 0.24)) * float(1.0 - 0.6 * rad);  // smaller puffs further out
+    spheres.push_back({float(rad * std::cos(ang)) * 1.2f,
+                       float(rng.uniform(-0.05, 0.2)) + 0.15f * float(0.5 - rad),
                        float(rad * std::sin(ang)) * 0.9f, r + 0.06f});
   }
   const float base_y = -0.12f;
@@ -146,12 +164,15 @@ DenseVolume generate_cloud(const CloudParams& p) {
           const float dx = x - s.x, dy = y - s.y, dz = z - s.z;
           d = smooth_min(d, std::sqrt(dx * dx + dy * dy + dz * dz) - s.r, p.smoothness);
         }
-        d = -smooth_min(-d, y - base_y, 0.05f);  // smooth max with the half-space y > base_y: flat bottom
-        if (d > 1.5f * p.noise_amplitude + p.density_band) continue;  // far outside: |fbm| <~ 1.05 cannot reach
+        d = -smooth_min(-d, y - base_y,
+                        0.05f);  // smooth max with the half-space y > base_y: flat bottom
+        if (d > 1.5f * p.noise_amplitude + p.density_band)
+          continue;  // far outside: |fbm| <~ 1.05 cannot reach
         // Displacement is weaker at the flat base (cumulus bottoms are smooth).
         const float base_fade = std::clamp((y - base_y) / 0.15f, 0.25f, 1.0f);
         d += p.noise_amplitude * base_fade *
-             fbm(x * p.noise_frequency, y * p.noise_frequency, z * p.noise_frequency, p.noise_octaves, noise_seed);
+             fbm(x * p.noise_frequency, y * p.noise_frequency, z * p.noise_frequency,
+                 p.noise_octaves, noise_seed);
         // Fog volume: 0 outside, smooth ramp to 1 over the band inside the surface.
         const float t = std::clamp(-d / p.density_band, 0.0f, 1.0f);
         vol.values[(size_t(k) * vol.ny + j) * vol.nx + i] = t * t * (3.0f - 2.0f * t);

@@ -10,7 +10,7 @@
 namespace vesper {
 
 struct CloudParams {
-  int resolution = 128;          // voxels along x and z; y gets resolution/2
+  int resolution = 128;  // voxels along x and z; y gets resolution/2
   std::uint64_t seed = 1;
   double voxel_size = 0.02;      // world units; the cloud is resolution*voxel_size wide
   float noise_amplitude = 0.08;  // SDF displacement, in units of the cloud half-width

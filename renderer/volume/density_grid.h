@@ -14,7 +14,8 @@ namespace vesper {
 struct Affine3d {
   std::array<double, 12> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   Vec3d apply_point(const Vec3d& p) const {
-    return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+    return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
+            m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
             m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
   }
   Vec3d apply_vector(const Vec3d& v) const {
@@ -24,7 +25,8 @@ struct Affine3d {
 };
 
 struct IndexBox {
-  std::array<int, 3> min{0, 0, 0}, max{-1, -1, -1};  // inclusive voxel coordinates; empty if max < min
+  std::array<int, 3> min{0, 0, 0},
+      max{-1, -1, -1};  // inclusive voxel coordinates; empty if max < min
   bool empty() const { return max[0] < min[0] || max[1] < min[1] || max[2] < min[2]; }
 };
 

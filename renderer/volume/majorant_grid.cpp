@@ -121,7 +121,8 @@ void MajorantGrid::walk(const Vec3& o, const Vec3& d, float tmin, float tmax,
   float t = t0, m = 0.0f;
   for (;;) {
     m = max_[(size_t(cell[2]) * res_[1] + cell[1]) * res_[0] + cell[0]];
-    const int axis = t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
+    const int axis =
+        t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
     const float t_exit = std::min(std::max(t_next[axis], t), t1);
     if (t_exit > t) {
       if (m == pending.max_density) {
@@ -135,7 +136,9 @@ void MajorantGrid::walk(const Vec3& o, const Vec3& d, float tmin, float tmax,
     if (t >= t1) break;
     cell[axis] += step[axis];
     if (cell[axis] < 0 || cell[axis] >= res_[axis]) break;
-    t_next[axis] = (lo_[axis] + float(cell[axis] + (step[axis] > 0 ? 1 : 0)) * cell_size_[axis] - o[axis]) / d[axis];
+    t_next[axis] =
+        (lo_[axis] + float(cell[axis] + (step[axis] > 0 ? 1 : 0)) * cell_size_[axis] - o[axis]) /
+        d[axis];
   }
   // Close the walk at t1 exactly (the last cell boundary may differ from the
   // clipped t1 by rounding).

@@ -32,7 +32,8 @@ std::unique_ptr<openvdb::io::File> open_file(const fs::path& file) {
   init_openvdb();
   std::error_code ec;
   if (!fs::exists(file, ec)) throw VdbError("cannot open " + quoted(file) + ": no such file");
-  if (fs::is_directory(file, ec)) throw VdbError("cannot open " + quoted(file) + ": is a directory");
+  if (fs::is_directory(file, ec))
+    throw VdbError("cannot open " + quoted(file) + ": is a directory");
   auto f = std::make_unique<openvdb::io::File>(file.string());
   try {
     f->open(/*delayLoad=*/false);
@@ -108,7 +109,8 @@ std::vector<std::string> list_vdb_grids(const fs::path& file) {
   auto f = open_file(file);
   std::vector<std::string> out;
   try {
-    const openvdb::GridPtrVecPtr grids = f->readAllGridMetadata();  // keep alive: range-for over *temp dangles
+    const openvdb::GridPtrVecPtr grids =
+        f->readAllGridMetadata();  // keep alive: range-for over *temp dangles
     for (const auto& g : *grids) out.push_back(g->getName() + ": " + g->valueType());
   } catch (const std::exception& e) {
     throw VdbError(quoted(file) + ": cannot read grid metadata: " + e.what());
@@ -131,9 +133,12 @@ std::vector<VdbGridInfo> describe_vdb_grids(const fs::path& file) {
       info.active_box = to_box(g->evalActiveVoxelBoundingBox());
       info.linear_transform = g->transform().isLinear();
       if (info.linear_transform) info.index_to_world = to_affine(g->transform());
-      if (auto fg = openvdb::GridBase::grid<openvdb::FloatGrid>(g)) scalar_range(*fg, info);
-      else if (auto dg = openvdb::GridBase::grid<openvdb::DoubleGrid>(g)) scalar_range(*dg, info);
-      else if (auto ig = openvdb::GridBase::grid<openvdb::Int32Grid>(g)) scalar_range(*ig, info);
+      if (auto fg = openvdb::GridBase::grid<openvdb::FloatGrid>(g))
+        scalar_range(*fg, info);
+      else if (auto dg = openvdb::GridBase::grid<openvdb::DoubleGrid>(g))
+        scalar_range(*dg, info);
+      else if (auto ig = openvdb::GridBase::grid<openvdb::Int32Grid>(g))
+        scalar_range(*ig, info);
       out.push_back(std::move(info));
     }
   } catch (const VdbError&) {
@@ -151,7 +156,8 @@ std::shared_ptr<const DensityGrid> load_vdb_grid(const fs::path& file, const std
   openvdb::GridBase::Ptr base;
   try {
     if (!f->hasGrid(grid_name))
-      throw VdbError(quoted(file) + ": no grid named '" + grid_name + "'; the file has: " + grid_listing(*f));
+      throw VdbError(quoted(file) + ": no grid named '" + grid_name +
+                     "'; the file has: " + grid_listing(*f));
     base = f->readGrid(grid_name);
   } catch (const VdbError&) {
     throw;
@@ -171,20 +177,22 @@ std::shared_ptr<const DensityGrid> load_vdb_grid(const fs::path& file, const std
   const float bg = grid->background();
   if (!std::isfinite(bg)) throw VdbError(where + ": background value is " + num_str(bg));
   if (bg != 0.0f)
-    throw VdbError(where + ": background value is " + num_str(bg) +
-                   ", but a density must be 0 outside its active voxels (a level set? convert it to a fog "
-                   "volume first, e.g. vdb_tool -read in.vdb -ls2fog -write out.vdb)");
+    throw VdbError(
+        where + ": background value is " + num_str(bg) +
+        ", but a density must be 0 outside its active voxels (a level set? convert it to a fog "
+        "volume first, e.g. vdb_tool -read in.vdb -ls2fog -write out.vdb)");
   if (grid->activeVoxelCount() == 0) throw VdbError(where + " has no active voxels");
 
   float max_value = 0.0f;
   for (auto it = grid->cbeginValueOn(); it; ++it) {
     const float v = *it;
     if (!std::isfinite(v))
-      throw VdbError(where + ": " + (it.isVoxelValue() ? "voxel " : "tile at ") + coord_str(it.getCoord()) +
-                     " is " + num_str(v) + " (NaN/Inf values are not allowed)");
+      throw VdbError(where + ": " + (it.isVoxelValue() ? "voxel " : "tile at ") +
+                     coord_str(it.getCoord()) + " is " + num_str(v) +
+                     " (NaN/Inf values are not allowed)");
     if (reject_negative && v < 0.0f)
-      throw VdbError(where + ": " + (it.isVoxelValue() ? "voxel " : "tile at ") + coord_str(it.getCoord()) +
-                     " is negative (" + num_str(v) + ")");
+      throw VdbError(where + ": " + (it.isVoxelValue() ? "voxel " : "tile at ") +
+                     coord_str(it.getCoord()) + " is negative (" + num_str(v) + ")");
     max_value = std::max(max_value, v);
   }
   // Inactive voxels inside leaves may hold stale values (even NaN); the
@@ -199,20 +207,23 @@ std::shared_ptr<const DensityGrid> load_vdb_grid(const fs::path& file, const std
   } catch (const std::exception& e) {
     throw VdbError(where + ": conversion to NanoVDB failed: " + e.what());
   }
-  return std::make_shared<NanoDensityGrid>(std::move(handle), grid_name, to_affine(tf), box, max_value);
+  return std::make_shared<NanoDensityGrid>(std::move(handle), grid_name, to_affine(tf), box,
+                                           max_value);
 }
 
-void write_vdb_fog_volume(const DenseVolume& volume, const std::string& grid_name, const fs::path& file,
-                          float cutoff) {
+void write_vdb_fog_volume(const DenseVolume& volume, const std::string& grid_name,
+                          const fs::path& file, float cutoff) {
   init_openvdb();
   const std::string where = "cannot write " + quoted(file);
   if (volume.nx <= 0 || volume.ny <= 0 || volume.nz <= 0)
     throw VdbError(where + ": volume dimensions must be positive");
   if (volume.values.size() != size_t(volume.nx) * size_t(volume.ny) * size_t(volume.nz))
-    throw VdbError(where + ": volume has " + std::to_string(volume.values.size()) + " values, expected nx*ny*nz");
+    throw VdbError(where + ": volume has " + std::to_string(volume.values.size()) +
+                   " values, expected nx*ny*nz");
   if (!(volume.voxel_size > 0) || !std::isfinite(volume.voxel_size))
     throw VdbError(where + ": voxel size must be positive and finite");
-  if (!std::isfinite(volume.origin.x) || !std::isfinite(volume.origin.y) || !std::isfinite(volume.origin.z))
+  if (!std::isfinite(volume.origin.x) || !std::isfinite(volume.origin.y) ||
+      !std::isfinite(volume.origin.z))
     throw VdbError(where + ": origin must be finite");
   if (grid_name.empty()) throw VdbError(where + ": empty grid name");
 
@@ -233,15 +244,16 @@ void write_vdb_fog_volume(const DenseVolume& volume, const std::string& grid_nam
   grid->setName(grid_name);
   grid->setGridClass(openvdb::GRID_FOG_VOLUME);
   grid->setCreator("vesper " VESPER_VERSION);
-  openvdb::math::Transform::Ptr tf = openvdb::math::Transform::createLinearTransform(volume.voxel_size);
+  openvdb::math::Transform::Ptr tf =
+      openvdb::math::Transform::createLinearTransform(volume.voxel_size);
   tf->postTranslate(openvdb::Vec3d(volume.origin.x, volume.origin.y, volume.origin.z));
   grid->setTransform(tf);
 
   // Atomic: write a temporary file beside the target, then rename over it.
   static std::atomic<unsigned> counter{0};
   const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  const fs::path tmp = dir / (file.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                              std::to_string(counter++));
+  const fs::path tmp = dir / (file.filename().string() + ".tmp-" + std::to_string(::getpid()) +
+                              "-" + std::to_string(counter++));
   try {
     openvdb::io::File out(tmp.string());
     out.write({grid});

@@ -21,7 +21,8 @@ class VdbError : public std::runtime_error {
 // Loads one float grid by name and converts it to NanoVDB for sampling.
 // Rejects: unreadable file, missing grid, non-float grid, NaN/Inf voxels,
 // negative values (when reject_negative), an empty grid.
-std::shared_ptr<const DensityGrid> load_vdb_grid(const std::filesystem::path& file, const std::string& grid_name,
+std::shared_ptr<const DensityGrid> load_vdb_grid(const std::filesystem::path& file,
+                                                 const std::string& grid_name,
                                                  bool reject_negative = true);
 
 // Names and value types of every grid in a file ("density: float").
@@ -31,11 +32,11 @@ std::vector<std::string> list_vdb_grids(const std::filesystem::path& file);
 // counts are read from the grid itself (the file's metadata can be absent).
 struct VdbGridInfo {
   std::string name;
-  std::string value_type;   // "float", "vec3s", ...
-  std::string grid_class;   // "fog volume", "level set", "unknown", ...
+  std::string value_type;  // "float", "vec3s", ...
+  std::string grid_class;  // "fog volume", "level set", "unknown", ...
   unsigned long long active_voxels = 0;
   IndexBox active_box;
-  bool has_range = false;   // scalar (float/double/int) grids only
+  bool has_range = false;  // scalar (float/double/int) grids only
   double min_value = 0, max_value = 0;
   double background = 0;    // scalar grids only
   Affine3d index_to_world;  // identity when the transform is not linear

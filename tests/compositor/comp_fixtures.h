@@ -67,11 +67,10 @@ inline LayeredImage make_layered(int w, int h, std::vector<std::string> channels
 // exactly, in float), lightrays and candles are parts of the fog, fog has an alpha.
 // `scale` varies the frame (for sequences).
 inline LayeredImage night_like(int w = 16, int h = 12, float scale = 1.f) {
-  const std::vector<std::string> ch = {"R",           "G",           "B",           "A",
-                                       "surfaces.R",  "surfaces.G",  "surfaces.B",  "fog.R",
-                                       "fog.G",       "fog.B",       "fog.A",       "lightrays.R",
-                                       "lightrays.G", "lightrays.B", "candles.R",   "candles.G",
-                                       "candles.B",   "depth.Z"};
+  const std::vector<std::string> ch = {
+      "R",           "G",           "B",         "A",         "surfaces.R", "surfaces.G",
+      "surfaces.B",  "fog.R",       "fog.G",     "fog.B",     "fog.A",      "lightrays.R",
+      "lightrays.G", "lightrays.B", "candles.R", "candles.G", "candles.B",  "depth.Z"};
   LayeredImage img = make_layered(w, h, ch, [&](int x, int y, size_t c) -> float {
     const float u = (float(x) + 0.5f) / float(w), v = (float(y) + 0.5f) / float(h);
     const float surf[3] = {0.6f * u * u * scale, 0.4f * u * v * scale, 0.2f * v * scale};
@@ -81,14 +80,32 @@ inline LayeredImage night_like(int w = 16, int h = 12, float scale = 1.f) {
     // Sums in double then rounded, so that beauty == float(surf + fog) exactly.
     auto fog = [&](int k) { return rays[k] + cand[k]; };
     switch (c) {
-      case 0: case 1: case 2: return surf[c] + fog(int(c));
-      case 3: return 1.f;
-      case 4: case 5: case 6: return surf[c - 4];
-      case 7: case 8: case 9: return fog(int(c - 7));
-      case 10: return 0.25f + 0.5f * u;
-      case 11: case 12: case 13: return rays[c - 11];
-      case 14: case 15: case 16: return cand[c - 14];
-      default: return 1.f + 10.f * v;
+      case 0:
+      case 1:
+      case 2:
+        return surf[c] + fog(int(c));
+      case 3:
+        return 1.f;
+      case 4:
+      case 5:
+      case 6:
+        return surf[c - 4];
+      case 7:
+      case 8:
+      case 9:
+        return fog(int(c - 7));
+      case 10:
+        return 0.25f + 0.5f * u;
+      case 11:
+      case 12:
+      case 13:
+        return rays[c - 11];
+      case 14:
+      case 15:
+      case 16:
+        return cand[c - 14];
+      default:
+        return 1.f + 10.f * v;
     }
   });
   img.metadata["vesper:scene_hash"] = "test";

@@ -9,13 +9,13 @@
 #include <cmath>
 #include <string>
 
-#include "tests/common/cli_runner.h"
 #include "comp_fixtures.h"
 #include "compositor/comp_run.h"
 #include "compositor/grade.h"
 #include "compositor/histogram.h"
 #include "compositor/layer_mix.h"
 #include "compositor/recipe.h"
+#include "tests/common/cli_runner.h"
 
 using namespace vesper;
 using namespace vesper::comptest;
@@ -173,7 +173,8 @@ TEST(LayerMix, PartitionReproducesTheBeautyCompositeAfterGradeAndDisplay) {
   };
   const RgbaImage beauty = composite({LayerOp{"beauty"}});
   const RgbaImage parts = composite({LayerOp{"surfaces"}, LayerOp{"fog"}});
-  const RgbaImage finer = composite({LayerOp{"surfaces"}, LayerOp{"lightrays"}, LayerOp{"candles"}});
+  const RgbaImage finer =
+      composite({LayerOp{"surfaces"}, LayerOp{"lightrays"}, LayerOp{"candles"}});
   double max_diff = 0, max_diff_finer = 0, max_value = 0;
   for (size_t i = 0; i < beauty.pixel_count(); ++i)
     for (int c = 0; c < 3; ++c) {
@@ -240,19 +241,37 @@ TEST(Recipe, ValidationErrorsNameTheJsonPath) {
       {[](json& j) { j["layers"][0]["mode"] = "multiply"; }, "comp.json: /layers/0/mode: "},
       {[](json& j) { j["layers"][0]["gain"] = "loud"; }, "comp.json: /layers/0/gain: "},
       {[](json& j) { j["layers"][0]["input"] = "plate"; }, "comp.json: /layers/0/input: "},
-      {[](json& j) { j["layers"][0].erase("layer"); }, "comp.json: /layers/0: missing key \"layer\""},
-      {[](json& j) { j["inputs"]["frame"] = "nothere.exr"; }, "comp.json: /inputs/frame: no such file"},
-      {[](json& j) { j["grade"] = {{"cdl", {{"power", {1, 0, 1}}}}}; }, "comp.json: /grade/cdl/power/1: expected a positive number"},
-      {[](json& j) { j["grade"] = {{"look_lut", "missing.cube"}}; }, "comp.json: /grade/look_lut: no such LUT"},
-      {[](json& j) { j["display"]["config"] = "no/config.ocio"; }, "comp.json: /display/config: no such OCIO config"},
-      {[](json& j) { j["outputs"]["image"] = "out/comp.bmp"; }, "comp.json: /outputs/image: expected a .png"},
-      {[](json& j) { j["outputs"]["bit_depth"] = 12; }, "comp.json: /outputs/bit_depth: expected 8 or 16"},
-      {[](json& j) { j["outputs"]["image"] = "out/comp.jpg"; j["outputs"]["bit_depth"] = 16; },
+      {[](json& j) { j["layers"][0].erase("layer"); },
+       "comp.json: /layers/0: missing key \"layer\""},
+      {[](json& j) { j["inputs"]["frame"] = "nothere.exr"; },
+       "comp.json: /inputs/frame: no such file"},
+      {[](json& j) {
+         j["grade"] = {{"cdl", {{"power", {1, 0, 1}}}}};
+       },
+       "comp.json: /grade/cdl/power/1: expected a positive number"},
+      {[](json& j) {
+         j["grade"] = {{"look_lut", "missing.cube"}};
+       },
+       "comp.json: /grade/look_lut: no such LUT"},
+      {[](json& j) { j["display"]["config"] = "no/config.ocio"; },
+       "comp.json: /display/config: no such OCIO config"},
+      {[](json& j) { j["outputs"]["image"] = "out/comp.bmp"; },
+       "comp.json: /outputs/image: expected a .png"},
+      {[](json& j) { j["outputs"]["bit_depth"] = 12; },
+       "comp.json: /outputs/bit_depth: expected 8 or 16"},
+      {[](json& j) {
+         j["outputs"]["image"] = "out/comp.jpg";
+         j["outputs"]["bit_depth"] = 16;
+       },
        "comp.json: /outputs/bit_depth: JPEG is 8-bit only"},
-      {[](json& j) { j["outputs"] = json::object(); }, "comp.json: /outputs: expected an \"image\" or an \"exr\""},
-      {[](json& j) { j["outputs"]["image"] = "nowhere/comp.png"; }, "comp.json: /outputs/image: the output folder"},
-      {[](json& j) { j["outputs"]["image"] = "out/comp.####.png"; }, "comp.json: /outputs/image: expected no frame pattern"},
-      {[](json& j) { j["outputs"]["exr"] = "frame.exr"; }, "comp.json: /outputs/exr: would overwrite the input"},
+      {[](json& j) { j["outputs"] = json::object(); },
+       "comp.json: /outputs: expected an \"image\" or an \"exr\""},
+      {[](json& j) { j["outputs"]["image"] = "nowhere/comp.png"; },
+       "comp.json: /outputs/image: the output folder"},
+      {[](json& j) { j["outputs"]["image"] = "out/comp.####.png"; },
+       "comp.json: /outputs/image: expected no frame pattern"},
+      {[](json& j) { j["outputs"]["exr"] = "frame.exr"; },
+       "comp.json: /outputs/exr: would overwrite the input"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     json j = base_recipe();
@@ -293,7 +312,8 @@ TEST(Recipe, LayersDefaultToTheFirstInputAndMayNameAnother) {
   write_text(f.dir / "two.json", R"({
     "inputs": {"main": "frame.exr", "plate": "plate.exr"},
     "layers": [{"layer": "beauty"}, {"layer": "beauty", "input": "plate", "gain": -2}],
-    "display": {"config": ")" + kConfig + R"(", "view": "Standard"},
+    "display": {"config": ")" + kConfig +
+                                     R"(", "view": "Standard"},
     "outputs": {"exr": "out/sum.exr"}})");
   const CompRecipe r = load_recipe(f.dir / "two.json");
   EXPECT_EQ(r.layers[0].input, 0u);
@@ -326,16 +346,16 @@ TEST(CompRun, WritesImageExrAndHistogramAtomically) {
   });
   EXPECT_EQ(calls, 1u);
   ASSERT_EQ(rep.frames.size(), 1u);
-  EXPECT_EQ(files_in(f.dir / "out"), (std::vector<std::string>{"comp.exr", "comp.hist.json",
-                                                               "comp.plot.png", "comp.png"}));
+  EXPECT_EQ(files_in(f.dir / "out"),
+            (std::vector<std::string>{"comp.exr", "comp.hist.json", "comp.plot.png", "comp.png"}));
   // The EXR is the graded scene-linear mix: beauty + 0.8 * tint * lightrays, times 2^0.5.
   const LayeredImage src = night_like();
   const LayeredImage exr = read_exr(f.dir / "out/comp.exr");
   ASSERT_EQ(exr.width, src.width);
   const float tint[3] = {1.0f, 0.95f, 0.85f};
   for (int c = 0; c < 3; ++c) {
-    const float expect = (src.at(5, 7, size_t(c)) + 0.8f * tint[c] * src.at(5, 7, size_t(11 + c))) *
-                         std::exp2(0.5f);
+    const float expect =
+        (src.at(5, 7, size_t(c)) + 0.8f * tint[c] * src.at(5, 7, size_t(11 + c))) * std::exp2(0.5f);
     EXPECT_NEAR(exr.at(5, 7, size_t(c)), expect, 1e-5f * expect);
   }
   // The image is 8-bit RGB, and the histogram JSON counts every pixel.
@@ -448,15 +468,16 @@ TEST(CompRun, FailingFrameLeavesNothingAndEarlierFramesStay) {
   fs::create_directories(dir / "out");
   write_exr(night_like(8, 6), dir / "s.0001.exr");
   write_truncated_exr(dir / "s.0002.exr", night_like(8, 6));
-  write_json(dir / "r.json",
-             {{"inputs", {{"f", "s.####.exr"}}},
-              {"display", {{"config", kConfig}}},
-              {"outputs",
-               {{"image", "out/c.####.png"}, {"exr", "out/c.####.exr"}, {"histogram_plot", "out/p.####.png"}}}});
+  write_json(dir / "r.json", {{"inputs", {{"f", "s.####.exr"}}},
+                              {"display", {{"config", kConfig}}},
+                              {"outputs",
+                               {{"image", "out/c.####.png"},
+                                {"exr", "out/c.####.exr"},
+                                {"histogram_plot", "out/p.####.png"}}}});
   const std::string err = error_of([&] { run_comp(load_recipe(dir / "r.json")); });
   EXPECT_NE(err.find("s.0002.exr"), std::string::npos) << err;
-  EXPECT_EQ(files_in(dir / "out"),
-            (std::vector<std::string>{"c.0001.exr", "c.0001.hist.json", "c.0001.png", "p.0001.png"}));
+  EXPECT_EQ(files_in(dir / "out"), (std::vector<std::string>{"c.0001.exr", "c.0001.hist.json",
+                                                             "c.0001.png", "p.0001.png"}));
 }
 
 TEST(CompRun, BrokenInputsAndColourSettingsFailBeforeWritingAnything) {
@@ -506,18 +527,17 @@ class CompCli : public vesper::test::CliTest {
 };
 
 TEST_F(CompCli, QuickFlagsWriteImageExrAndHistogram) {
-  const auto r = run(q(dir_ / "in.exr") + " --layer lightrays:0.8 --layer candles:0.5:over" +
-                     " --exposure 0.3 --cdl-slope 1.05,1,0.95 --saturation 0.9 --config " +
-                     q(kConfig) + " --view 'ACES 1.0 SDR' -o " + q(dir_ / "out/c.png") +
-                     " --exr " + q(dir_ / "out/c.exr"));
+  const auto r =
+      run(q(dir_ / "in.exr") + " --layer lightrays:0.8 --layer candles:0.5:over" +
+          " --exposure 0.3 --cdl-slope 1.05,1,0.95 --saturation 0.9 --config " + q(kConfig) +
+          " --view 'ACES 1.0 SDR' -o " + q(dir_ / "out/c.png") + " --exr " + q(dir_ / "out/c.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find((dir_ / "out/c.png").string()), std::string::npos) << r.out;
   EXPECT_NE(r.out.find((dir_ / "out/c.exr").string()), std::string::npos) << r.out;
   EXPECT_NE(r.out.find((dir_ / "out/c.hist.json").string()), std::string::npos) << r.out;
   EXPECT_NE(r.err.find("median"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("clipped"), std::string::npos) << r.err;
-  EXPECT_EQ(files_in(dir_ / "out"),
-            (std::vector<std::string>{"c.exr", "c.hist.json", "c.png"}));
+  EXPECT_EQ(files_in(dir_ / "out"), (std::vector<std::string>{"c.exr", "c.hist.json", "c.png"}));
 }
 
 TEST_F(CompCli, RecipeFileRuns) {
@@ -602,9 +622,10 @@ TEST(CompRun, IdentityRecipeMatchesOiiotoolOciodisplay) {
     j["outputs"] = {{"image", "out/comp.png"}};
     run_comp(load_recipe(f.recipe(j)));
     const fs::path ref = f.dir / "ref.png";
-    const std::string cmd = "oiiotool '" + (f.dir / "frame.exr").string() + "' --ch R,G,B --colorconfig '" +
-                            kConfig + "' --iscolorspace 'Linear Rec.709 (sRGB)' --ociodisplay sRGB '" +
-                            view + "' -d uint8 -o '" + ref.string() + "' >/dev/null 2>&1";
+    const std::string cmd = "oiiotool '" + (f.dir / "frame.exr").string() +
+                            "' --ch R,G,B --colorconfig '" + kConfig +
+                            "' --iscolorspace 'Linear Rec.709 (sRGB)' --ociodisplay sRGB '" + view +
+                            "' -d uint8 -o '" + ref.string() + "' >/dev/null 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
     auto read8 = [](const fs::path& p) {
       auto in = OIIO::ImageInput::open(p.string());

@@ -6,6 +6,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 
+#include <sys/wait.h>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -14,7 +15,6 @@
 #include <fstream>
 #include <random>
 #include <string>
-#include <sys/wait.h>
 
 #include "compositor/grade.h"
 
@@ -63,7 +63,9 @@ std::string quote(const std::string& s) {
   return out + "'";
 }
 
-bool have_tool(const std::string& name) { return run("command -v " + name + " >/dev/null").status == 0; }
+bool have_tool(const std::string& name) {
+  return run("command -v " + name + " >/dev/null").status == 0;
+}
 
 // A ramp over -0.5..4 along x in the first rows, then random colours in
 // [-0.25, 4] (about 5% of the channels negative); alpha = 1.
@@ -73,7 +75,8 @@ RgbaImage test_image(int w = 64, int h = 32) {
   std::uniform_real_distribution<float> u(-0.25f, 4.f);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      for (int c = 0; c < 3; ++c) img.at(x, y, c) = y < 4 ? -0.5f + 4.5f * float(x) / float(w - 1) : u(rng);
+      for (int c = 0; c < 3; ++c)
+        img.at(x, y, c) = y < 4 ? -0.5f + 4.5f * float(x) / float(w - 1) : u(rng);
       img.at(x, y, 3) = 1.f;
     }
   return img;
@@ -109,8 +112,8 @@ void compare_with_oiiotool(const std::string& display, const std::string& view) 
   write_exr(src, in);
   const std::string cmd = "oiiotool " + quote(in.string()) + " --colorconfig " + quote(kConfig) +
                           " --iscolorspace " + quote("Linear Rec.709 (sRGB)") +
-                          " --ociodisplay:unpremult=0 " + quote(display) + " " + quote(view) + " -d float -o " +
-                          quote(out.string());
+                          " --ociodisplay:unpremult=0 " + quote(display) + " " + quote(view) +
+                          " -d float -o " + quote(out.string());
   const RunResult r = run(cmd);
   ASSERT_EQ(r.status, 0) << cmd << "\n" << r.output;
   const RgbaImage ref = read_image(out);
@@ -151,7 +154,8 @@ V3 cdl_by_hand(V3 in, double exposure, const Cdl& c) {
     const double x = v * k * s + o;
     return x < 0 ? x : std::pow(x, p);
   };
-  V3 t{channel(in.r, c.slope.r, c.offset.r, c.power.r), channel(in.g, c.slope.g, c.offset.g, c.power.g),
+  V3 t{channel(in.r, c.slope.r, c.offset.r, c.power.r),
+       channel(in.g, c.slope.g, c.offset.g, c.power.g),
        channel(in.b, c.slope.b, c.offset.b, c.power.b)};
   const double luma = 0.2126 * t.r + 0.7152 * t.g + 0.0722 * t.b;
   const double s = c.saturation;
@@ -170,7 +174,8 @@ TEST(Grade, BundledConfigPathAndListing) {
   EXPECT_EQ(g.config_path(), kConfig);
   EXPECT_EQ(g.displays(), (std::vector<std::string>{"sRGB", "Rec.1886 Rec.709"}));
   EXPECT_EQ(g.views("sRGB"), (std::vector<std::string>{"Standard", "ACES 1.0 SDR", "Raw"}));
-  EXPECT_EQ(g.views("Rec.1886 Rec.709"), (std::vector<std::string>{"Standard", "ACES 1.0 SDR", "Raw"}));
+  EXPECT_EQ(g.views("Rec.1886 Rec.709"),
+            (std::vector<std::string>{"Standard", "ACES 1.0 SDR", "Raw"}));
 }
 
 TEST(Grade, ConfigFallsBackToOcioEnvThenBundled) {
@@ -190,8 +195,12 @@ TEST(Grade, ConfigFallsBackToOcioEnvThenBundled) {
 
 TEST(Grade, IdentityStandardMatchesOiiotoolSrgb) { compare_with_oiiotool("sRGB", "Standard"); }
 TEST(Grade, IdentityAcesSdrMatchesOiiotoolSrgb) { compare_with_oiiotool("sRGB", "ACES 1.0 SDR"); }
-TEST(Grade, IdentityStandardMatchesOiiotoolRec1886) { compare_with_oiiotool("Rec.1886 Rec.709", "Standard"); }
-TEST(Grade, IdentityAcesSdrMatchesOiiotoolRec1886) { compare_with_oiiotool("Rec.1886 Rec.709", "ACES 1.0 SDR"); }
+TEST(Grade, IdentityStandardMatchesOiiotoolRec1886) {
+  compare_with_oiiotool("Rec.1886 Rec.709", "Standard");
+}
+TEST(Grade, IdentityAcesSdrMatchesOiiotoolRec1886) {
+  compare_with_oiiotool("Rec.1886 Rec.709", "ACES 1.0 SDR");
+}
 
 // Negative control for the oiiotool comparisons: the two views differ by far
 // more than the 1/255 tolerance, so a wrong view would be caught.
@@ -200,17 +209,21 @@ TEST(Grade, StandardAndAcesViewsDiffer) {
   Grader(GradeDesc{}, DisplayDesc{kConfig, "sRGB", "Standard"}).apply_display(a);
   Grader(GradeDesc{}, DisplayDesc{kConfig, "sRGB", "ACES 1.0 SDR"}).apply_display(b);
   double max_diff = 0;
-  for (size_t i = 0; i < a.pixels.size(); ++i) max_diff = std::max(max_diff, double(std::fabs(a.pixels[i] - b.pixels[i])));
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    max_diff = std::max(max_diff, double(std::fabs(a.pixels[i] - b.pixels[i])));
   EXPECT_GT(max_diff, 0.05);
 }
 
 // The "Standard" views are the plain display encodings, checked by formula.
 TEST(Grade, StandardViewsAreThePlainEncodings) {
-  auto srgb = [](double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055; };
+  auto srgb = [](double v) {
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+  };
   auto bt1886 = [](double v) { return std::pow(std::max(v, 0.0), 1 / 2.4); };
   const float values[] = {0.f, 0.001f, 0.0031308f, 0.01f, 0.18f, 0.5f, 1.f};
-  for (const auto& [display, f] : {std::pair<std::string, double (*)(double)>{"sRGB", +srgb},
-                                   std::pair<std::string, double (*)(double)>{"Rec.1886 Rec.709", +bt1886}}) {
+  for (const auto& [display, f] :
+       {std::pair<std::string, double (*)(double)>{"sRGB", +srgb},
+        std::pair<std::string, double (*)(double)>{"Rec.1886 Rec.709", +bt1886}}) {
     Grader g(GradeDesc{}, DisplayDesc{kConfig, display, "Standard"});
     RgbaImage img(7, 1);
     for (int i = 0; i < 7; ++i)
@@ -238,8 +251,9 @@ TEST(Grade, AcesSdrToneScale) {
 }
 
 TEST(Grade, CdlAndExposureMatchTheAscFormula) {
-  const std::vector<V3> inputs = {{0.18, 0.18, 0.18}, {0.5, 0.25, 0.125}, {1.0, 2.0, 4.0}, {0.0, 0.0, 0.0},
-                                  {0.02, 0.7, 0.3},   {3.0, 0.01, 1.5},   {0.05, -0.2, -0.3}, {-1.0, -1.0, -1.0}};
+  const std::vector<V3> inputs = {{0.18, 0.18, 0.18}, {0.5, 0.25, 0.125}, {1.0, 2.0, 4.0},
+                                  {0.0, 0.0, 0.0},    {0.02, 0.7, 0.3},   {3.0, 0.01, 1.5},
+                                  {0.05, -0.2, -0.3}, {-1.0, -1.0, -1.0}};
   struct Case {
     float exposure;
     Cdl cdl;
@@ -268,7 +282,8 @@ TEST(Grade, CdlAndExposureMatchTheAscFormula) {
     g.apply_grade(img);
     for (size_t i = 0; i < inputs.size(); ++i) {
       // The float inputs, as the image holds them.
-      const V3 in{double(float(inputs[i].r)), double(float(inputs[i].g)), double(float(inputs[i].b))};
+      const V3 in{double(float(inputs[i].r)), double(float(inputs[i].g)),
+                  double(float(inputs[i].b))};
       const V3 want = cdl_by_hand(in, k.exposure, k.cdl);
       const std::string what = "case " + std::to_string(ci) + " input " + std::to_string(i);
       expect_rel_near(img.at(int(i), 0, 0), want.r, what + " R");
@@ -301,14 +316,16 @@ TEST(Grade, ErrorMissingConfig) {
     Grader g(GradeDesc{}, DisplayDesc{path, "sRGB", "Standard"});
     FAIL() << "no error";
   } catch (const CompError& e) {
-    EXPECT_NE(std::string(e.what()).find("OCIO config not found: " + path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("OCIO config not found: " + path), std::string::npos)
+        << e.what();
   }
 }
 
 TEST(Grade, ErrorInvalidConfig) {
   TempDir tmp;
   const fs::path bad = tmp.path / "bad.ocio";
-  std::ofstream(bad) << "ocio_profile_version: 2.1\nroles: {scene_linear: nothing}\ncolorspaces: [\n";
+  std::ofstream(bad)
+      << "ocio_profile_version: 2.1\nroles: {scene_linear: nothing}\ncolorspaces: [\n";
   try {
     Grader g(GradeDesc{}, DisplayDesc{bad.string(), "sRGB", "Standard"});
     FAIL() << "no error";

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -62,7 +62,8 @@ RgbaImage exposed(const RgbaImage& img, double stops) {
 RgbaImage srgb_encoded(const RgbaImage& linear) {
   RgbaImage out = linear;
   for (size_t i = 0; i < out.pixel_count(); ++i)
-    for (int c = 0; c < 3; ++c) out.pixels[i * 4 + size_t(c)] = float(srgb_encode(out.pixels[i * 4 + size_t(c)]));
+    for (int c = 0; c < 3; ++c)
+      out.pixels[i * 4 + size_t(c)] = float(srgb_encode(out.pixels[i * 4 + size_t(c)]));
   return out;
 }
 
@@ -85,8 +86,9 @@ double chi2_critical(double k, double z_alpha) {
 TEST(Histogram, LinearRampIsExactlyFlat) {
   constexpr int n = 256 * 64;
   // Evenly spaced over [0, 1), bin edges included: every bin gets 64 values.
-  for (const auto& ramp : {grey_image(256, 64, [](int i) { return float(i) / float(n); }),
-                           grey_image(256, 64, [](int i) { return (float(i) + 0.5f) / float(n); })}) {
+  for (const auto& ramp :
+       {grey_image(256, 64, [](int i) { return float(i) / float(n); }),
+        grey_image(256, 64, [](int i) { return (float(i) + 0.5f) / float(n); })}) {
     for (const LumaWeights w : {LumaWeights::Rec709, LumaWeights::Luminosity}) {
       const Histogram h = display_histogram(ramp, w);
       ASSERT_EQ(h.bins.size(), 256u);
@@ -96,7 +98,8 @@ TEST(Histogram, LinearRampIsExactlyFlat) {
     }
   }
   // An 8-bit ramp: every code value in its own bin.
-  const Histogram h8 = display_histogram(grey_image(16, 16, [](int i) { return float(i) / 255.f; }), LumaWeights::Rec709);
+  const Histogram h8 = display_histogram(grey_image(16, 16, [](int i) { return float(i) / 255.f; }),
+                                         LumaWeights::Rec709);
   for (size_t b = 0; b < 256; ++b) ASSERT_EQ(h8.bins[b], 1u) << "bin " << b;
 }
 
@@ -134,7 +137,8 @@ TEST(Histogram, CountsSumToThePixelCountAndClippingIsCounted) {
   EXPECT_EQ(sum(d.bins), img.pixel_count());
   size_t low = 0, high = 0;
   for (size_t i = 0; i < img.pixel_count(); ++i) {
-    double y = luminance(img.pixels[i * 4], img.pixels[i * 4 + 1], img.pixels[i * 4 + 2], LumaWeights::Rec709);
+    double y = luminance(img.pixels[i * 4], img.pixels[i * 4 + 1], img.pixels[i * 4 + 2],
+                         LumaWeights::Rec709);
     if (std::isnan(y)) y = 0;
     low += y <= 0;
     high += y >= 1;
@@ -147,7 +151,8 @@ TEST(Histogram, CountsSumToThePixelCountAndClippingIsCounted) {
   const Histogram l = log2_histogram(img, LumaWeights::Rec709);
   EXPECT_EQ(l.count, img.pixel_count());
   EXPECT_EQ(sum(l.bins), img.pixel_count());
-  EXPECT_DOUBLE_EQ(l.clipped_low, double(low) / double(img.pixel_count()));  // all within [-12, 8] otherwise
+  EXPECT_DOUBLE_EQ(l.clipped_low,
+                   double(low) / double(img.pixel_count()));  // all within [-12, 8] otherwise
   EXPECT_EQ(l.lo, -12);
   EXPECT_EQ(l.hi, 8);
   EXPECT_EQ(l.domain, HistogramDomain::Log2);
@@ -160,8 +165,9 @@ TEST(Histogram, DistanceIsZeroToItselfAndGrowsWithExposureShift) {
   const double shifts[] = {0, 0.25, 0.5, 1, 2};
   for (const HistogramDomain domain : {HistogramDomain::Log2, HistogramDomain::Display}) {
     auto hist = [&](const RgbaImage& linear) {
-      return domain == HistogramDomain::Log2 ? log2_histogram(linear, LumaWeights::Rec709)
-                                             : display_histogram(srgb_encoded(linear), LumaWeights::Rec709);
+      return domain == HistogramDomain::Log2
+                 ? log2_histogram(linear, LumaWeights::Rec709)
+                 : display_histogram(srgb_encoded(linear), LumaWeights::Rec709);
     };
     const Histogram ref = hist(base);
     EXPECT_EQ(wasserstein1(ref, ref), 0.0);
@@ -211,8 +217,9 @@ TEST(Histogram, MatchingExposureRecoversAKnownShift) {
                                              log2_histogram(reference, LumaWeights::Rec709));
     EXPECT_NEAR(l, s, 0.05);
     // Display: sRGB-encoded images, medians decoded back to linear.
-    const double d = matching_exposure_shift(display_histogram(srgb_encoded(base), LumaWeights::Rec709),
-                                             display_histogram(srgb_encoded(reference), LumaWeights::Rec709));
+    const double d =
+        matching_exposure_shift(display_histogram(srgb_encoded(base), LumaWeights::Rec709),
+                                display_histogram(srgb_encoded(reference), LumaWeights::Rec709));
     EXPECT_NEAR(d, s, 0.05);
     // And the other way round.
     EXPECT_NEAR(matching_exposure_shift(log2_histogram(reference, LumaWeights::Luminosity),
@@ -233,7 +240,8 @@ TEST(Histogram, WeightsGiveTheExpectedLuminanceOfPrimaries) {
     LumaWeights w;
     double r, g, b;
   };
-  for (const Case c : {Case{LumaWeights::Rec709, 0.2126, 0.7152, 0.0722}, Case{LumaWeights::Luminosity, 0.30, 0.59, 0.11}}) {
+  for (const Case c : {Case{LumaWeights::Rec709, 0.2126, 0.7152, 0.0722},
+                       Case{LumaWeights::Luminosity, 0.30, 0.59, 0.11}}) {
     for (int primary = 0; primary < 3; ++primary) {
       RgbaImage img(4, 4);
       for (size_t i = 0; i < img.pixel_count(); ++i) img.pixels[i * 4 + size_t(primary)] = 1.f;
@@ -255,10 +263,12 @@ TEST(Histogram, WeightsGiveTheExpectedLuminanceOfPrimaries) {
 TEST(Histogram, JsonHasTheDocumentedKeys) {
   const RgbaImage img = srgb_encoded(lognormal_image(64, 32));
   const Histogram h = display_histogram(img, LumaWeights::Luminosity);
-  const Histogram r = display_histogram(srgb_encoded(exposed(lognormal_image(64, 32), 0.5)), LumaWeights::Luminosity);
+  const Histogram r = display_histogram(srgb_encoded(exposed(lognormal_image(64, 32), 0.5)),
+                                        LumaWeights::Luminosity);
   const nlohmann::json j = nlohmann::json::parse(histogram_json(h, &r));
   for (const nlohmann::json* x : {&j, &j.at("reference")}) {
-    for (const char* k : {"domain", "weights", "range", "bins", "count", "mean", "median", "percentiles", "clipped"})
+    for (const char* k : {"domain", "weights", "range", "bins", "count", "mean", "median",
+                          "percentiles", "clipped"})
       EXPECT_TRUE(x->contains(k)) << k;
     EXPECT_EQ(x->at("domain"), "display");
     EXPECT_EQ(x->at("weights").at("name"), "luminosity");
@@ -271,7 +281,8 @@ TEST(Histogram, JsonHasTheDocumentedKeys) {
     for (const auto& b : x->at("bins")) s += b.get<uint64_t>();
     EXPECT_EQ(s, x->at("count").get<uint64_t>());
     EXPECT_EQ(x->at("count").get<uint64_t>(), 64u * 32u);
-    for (const char* p : {"1", "5", "25", "50", "75", "95", "99"}) EXPECT_TRUE(x->at("percentiles").contains(p)) << p;
+    for (const char* p : {"1", "5", "25", "50", "75", "95", "99"})
+      EXPECT_TRUE(x->at("percentiles").contains(p)) << p;
     EXPECT_DOUBLE_EQ(x->at("percentiles").at("50").get<double>(), x->at("median").get<double>());
     EXPECT_TRUE(x->at("clipped").contains("low"));
     EXPECT_TRUE(x->at("clipped").contains("high"));
@@ -282,20 +293,24 @@ TEST(Histogram, JsonHasTheDocumentedKeys) {
   const nlohmann::json solo = nlohmann::json::parse(histogram_json(h));
   EXPECT_FALSE(solo.contains("reference"));
   EXPECT_FALSE(solo.contains("distance"));
-  EXPECT_EQ(nlohmann::json::parse(histogram_json(log2_histogram(img, LumaWeights::Rec709))).at("domain"), "log2");
+  EXPECT_EQ(
+      nlohmann::json::parse(histogram_json(log2_histogram(img, LumaWeights::Rec709))).at("domain"),
+      "log2");
 }
 
 // (g) PNG plot ----------------------------------------------------------------------------
 
 TEST(Histogram, PlotIsWrittenAtomicallyAndReadable) {
-  const fs::path dir = fs::temp_directory_path() / ("vesper-hist-plot-" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("vesper-hist-plot-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   const RgbaImage base = lognormal_image(128, 128);
   const Histogram h = log2_histogram(base, LumaWeights::Rec709);
   const Histogram r = log2_histogram(exposed(base, 1), LumaWeights::Rec709);
   const Histogram d = display_histogram(srgb_encoded(base), LumaWeights::Rec709);
-  for (const auto& [name, hist, ref] : {std::tuple{"log2.png", &h, &r}, std::tuple{"display.png", &d, (const Histogram*)nullptr}}) {
+  for (const auto& [name, hist, ref] :
+       {std::tuple{"log2.png", &h, &r}, std::tuple{"display.png", &d, (const Histogram*)nullptr}}) {
     const fs::path p = dir / name;
     write_histogram_png(*hist, p, ref);
     auto in = OIIO::ImageInput::open(p.string());
@@ -315,9 +330,11 @@ TEST(Histogram, PlotIsWrittenAtomicallyAndReadable) {
     EXPECT_GT(bright, 5000u);
     EXPECT_GT(dark, 100000u);
   }
-  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos);
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos);
   EXPECT_THROW(write_histogram_png(h, dir / "no" / "such" / "dir.png"), CompError);
-  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos);
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos);
   fs::remove_all(dir);
 }
 
@@ -362,8 +379,9 @@ std::string read_text(const fs::path& p) {
 class HistCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vesper-hist-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("vesper-hist-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -371,8 +389,8 @@ class HistCli : public ::testing::Test {
 
   RunResult run(const std::string& args) {
     const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
-    const std::string cmd = std::string(VESPER_BINARY) + " hist " + args + " >" + out.string() + " 2>" +
-                            err.string() + " </dev/null";
+    const std::string cmd = std::string(VESPER_BINARY) + " hist " + args + " >" + out.string() +
+                            " 2>" + err.string() + " </dev/null";
     const int status = std::system(cmd.c_str());
     RunResult r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -411,7 +429,8 @@ class HistCli : public ::testing::Test {
 
 TEST_F(HistCli, PrintsTheHistogramAndMedianOfAPng) {
   const fs::path png = write_png("a.png");
-  const Histogram expected = display_histogram(read_histogram_source(png).image, LumaWeights::Rec709);
+  const Histogram expected =
+      display_histogram(read_histogram_source(png).image, LumaWeights::Rec709);
   const fs::path json = dir_ / "a.hist.json", plot = dir_ / "a.hist.png";
   const RunResult r = run(png.string() + " --json " + json.string() + " --plot " + plot.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -460,7 +479,8 @@ TEST_F(HistCli, ExrGetsADisplayAndALog2HistogramAndMatchesAnExposure) {
   EXPECT_NEAR(j.at("log2").at("matching_exposure_stops").get<double>(), 0.75, 1e-3);
   // --log2 makes the stops histogram the primary one.
   const fs::path plot = dir_ / "h.png";
-  const RunResult l = run(a.string() + " --log2 --plot " + plot.string() + " --json " + json.string());
+  const RunResult l =
+      run(a.string() + " --log2 --plot " + plot.string() + " --json " + json.string());
   ASSERT_EQ(l.exit_code, 0) << l.err;
   EXPECT_EQ(nlohmann::json::parse(read_text(json)).at("domain"), "log2");
   EXPECT_TRUE(fs::exists(plot));
@@ -483,7 +503,8 @@ TEST_F(HistCli, MissingFileIsAClearErrorNamingIt) {
 TEST_F(HistCli, CorruptOrTruncatedFileFailsAndLeavesNoOutput) {
   const fs::path png = write_png("a.png");
   const std::string bytes = read_text(png);
-  const fs::path cut = dir_ / "cut.png", junk = dir_ / "junk.exr", json = dir_ / "out.json", plot = dir_ / "out.png";
+  const fs::path cut = dir_ / "cut.png", junk = dir_ / "junk.exr", json = dir_ / "out.json",
+                 plot = dir_ / "out.png";
   std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
   std::ofstream(junk, std::ios::binary) << "v/1\x01 this is not an OpenEXR file";
   for (const fs::path& bad : {cut, junk}) {

@@ -536,7 +536,8 @@ TEST(Media, VdbEmissionScaleZeroWithGridIsAllowed) {
   TempDir dir;
   write_vdb_fog_volume(test_volume(), "density", dir.path() / "b.vdb");
   json doc = minimal_scene();
-  doc["media"] = json::parse(R"({"s": {"type": "vdb", "file": "b.vdb", "emission_grid": "density"}})");
+  doc["media"] =
+      json::parse(R"({"s": {"type": "vdb", "file": "b.vdb", "emission_grid": "density"}})");
   write_text(dir.path() / "s.json", doc.dump());
   const auto& m = std::get<VdbMediumDesc>(load_scene(dir.path() / "s.json").media[0].medium);
   EXPECT_NE(m.emission, nullptr);
@@ -547,7 +548,8 @@ TEST(Media, VdbMissingGridListsTheGridsOfTheFile) {
   TempDir dir;
   write_vdb_fog_volume(test_volume(), "density", dir.path() / "b.vdb");
   json doc = minimal_scene();
-  doc["media"] = json::parse(R"({"smoke": {"type": "vdb", "file": "b.vdb", "grid": "temperature"}})");
+  doc["media"] =
+      json::parse(R"({"smoke": {"type": "vdb", "file": "b.vdb", "grid": "temperature"}})");
   write_text(dir.path() / "s.json", doc.dump());
   SceneError e = expect_scene_error(dir.path() / "s.json");
   EXPECT_EQ(e.file(), (dir.path() / "s.json").string());
@@ -590,7 +592,8 @@ TEST(Media, VdbMissingOrUnreadableFile) {
 
 TEST(Media, CheapValuesAreValidatedBeforeTheFileIsRead) {
   json doc = minimal_scene();
-  doc["media"] = json::parse(R"({"smoke": {"type": "vdb", "file": "absent.vdb", "sigma_s": [1, -1, 1]}})");
+  doc["media"] =
+      json::parse(R"({"smoke": {"type": "vdb", "file": "absent.vdb", "sigma_s": [1, -1, 1]}})");
   try {
     parse_scene(doc, "s.json");
     FAIL();
@@ -630,7 +633,6 @@ TEST(Media, LoadsTheSharedSmokeVdb) {
   EXPECT_FALSE(m.density->active_box().empty());
   EXPECT_EQ(m.density_scale, 2);
 }
-
 
 // ---- Layers and AOVs ---------------------------------------------------------
 
@@ -709,7 +711,8 @@ TEST(Layers, EmissionGroupIsAlwaysKnownDefaultOnlyWithUngroupedLights) {
   EXPECT_EQ(e.json_path(), "/layers/glow/lights/0");
   EXPECT_NE(e.message().find("known groups: emission)"), std::string::npos) << e.what();
 
-  doc["lights"] = json::parse(R"([{"type": "point", "position": [0, 1, 0], "intensity": [1, 1, 1]}])");
+  doc["lights"] =
+      json::parse(R"([{"type": "point", "position": [0, 1, 0], "intensity": [1, 1, 1]}])");
   EXPECT_EQ(parse_scene(doc, "s.json").layers[0].lights, (std::vector<std::string>{"default"}));
 
   doc["lights"][0]["group"] = "lamp";
@@ -791,11 +794,14 @@ TEST(Layers, OverrideValuesAreRangeChecked) {
     const char* message;
   };
   const Case cases[] = {
-      {R"({"sigma_a": [0, -1, 0]})", "/layers/x/variant/media/fog/sigma_a/1", "expected a non-negative number, got -1"},
-      {R"({"sigma_s": [1, 1]})", "/layers/x/variant/media/fog/sigma_s", "expected an RGB array of 3 numbers"},
+      {R"({"sigma_a": [0, -1, 0]})", "/layers/x/variant/media/fog/sigma_a/1",
+       "expected a non-negative number, got -1"},
+      {R"({"sigma_s": [1, 1]})", "/layers/x/variant/media/fog/sigma_s",
+       "expected an RGB array of 3 numbers"},
       {R"({"g": 1})", "/layers/x/variant/media/fog/g", "expected a number in (-1, 1), got 1"},
       {R"({"enabled": 0})", "/layers/x/variant/media/fog/enabled", "expected true or false, got 0"},
-      {R"({"sigma": [1, 1, 1]})", "/layers/x/variant/media/fog/sigma", "unknown key 'sigma' (expected one of: density_scale, sigma_a, sigma_s, g, enabled)"},
+      {R"({"sigma": [1, 1, 1]})", "/layers/x/variant/media/fog/sigma",
+       "unknown key 'sigma' (expected one of: density_scale, sigma_a, sigma_s, g, enabled)"},
   };
   for (const Case& c : cases) {
     json doc = layered_scene();

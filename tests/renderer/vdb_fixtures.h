@@ -66,8 +66,9 @@ inline double dense_trilinear(const DenseVolume& v, double x, double y, double z
 }
 
 // Writes v as fog-volume grid `grid` into dir/file and returns the path.
-inline std::filesystem::path write_volume(const VdbTempDir& dir, const std::string& file, const DenseVolume& v,
-                                          const std::string& grid = "density", float cutoff = 1e-6f) {
+inline std::filesystem::path write_volume(const VdbTempDir& dir, const std::string& file,
+                                          const DenseVolume& v, const std::string& grid = "density",
+                                          float cutoff = 1e-6f) {
   const std::filesystem::path p = dir / file;
   write_vdb_fog_volume(v, grid, p, cutoff);
   return p;

@@ -37,9 +37,11 @@ std::string error_of(const std::function<void()>& f) {
 
 // A 6x5x4 block of distinct positive values.
 DenseVolume small_block() {
-  return make_volume(
-      6, 5, 4, [](int i, int j, int k) { return 0.25f + 0.5f * float(i) + 0.125f * float(j) + 2.0f * float(k); },
-      0.25, {1.0, -2.0, 3.0});
+  return make_volume(6, 5, 4,
+                     [](int i, int j, int k) {
+                       return 0.25f + 0.5f * float(i) + 0.125f * float(j) + 2.0f * float(k);
+                     },
+                     0.25, {1.0, -2.0, 3.0});
 }
 
 TEST(VdbIo, RoundTripKeepsValuesTransformAndBox) {
@@ -51,7 +53,8 @@ TEST(VdbIo, RoundTripKeepsValuesTransformAndBox) {
   EXPECT_EQ(grid->name(), "density");
   for (int k = 0; k < v.nz; ++k)
     for (int j = 0; j < v.ny; ++j)
-      for (int i = 0; i < v.nx; ++i) ASSERT_EQ(grid->voxel(i, j, k), dense_at(v, i, j, k)) << i << j << k;
+      for (int i = 0; i < v.nx; ++i)
+        ASSERT_EQ(grid->voxel(i, j, k), dense_at(v, i, j, k)) << i << j << k;
   EXPECT_EQ(grid->voxel(-1, 0, 0), 0.0f);
   EXPECT_EQ(grid->voxel(6, 0, 0), 0.0f);
   const IndexBox box = grid->active_box();
@@ -104,18 +107,23 @@ TEST(VdbSampling, TrilinearMatchesVoxelsHalfwaysAndAReference) {
     for (int j = 0; j + 1 < v.ny; ++j)
       for (int i = 0; i + 1 < v.nx; ++i) {
         const float a = dense_at(v, i, j, k);
-        EXPECT_NEAR(grid->sample(Vec3(i + 0.5f, float(j), float(k))), 0.5f * (a + dense_at(v, i + 1, j, k)), 1e-6f);
-        EXPECT_NEAR(grid->sample(Vec3(float(i), j + 0.5f, float(k))), 0.5f * (a + dense_at(v, i, j + 1, k)), 1e-6f);
-        EXPECT_NEAR(grid->sample(Vec3(float(i), float(j), k + 0.5f)), 0.5f * (a + dense_at(v, i, j, k + 1)), 1e-6f);
+        EXPECT_NEAR(grid->sample(Vec3(i + 0.5f, float(j), float(k))),
+                    0.5f * (a + dense_at(v, i + 1, j, k)), 1e-6f);
+        EXPECT_NEAR(grid->sample(Vec3(float(i), j + 0.5f, float(k))),
+                    0.5f * (a + dense_at(v, i, j + 1, k)), 1e-6f);
+        EXPECT_NEAR(grid->sample(Vec3(float(i), float(j), k + 0.5f)),
+                    0.5f * (a + dense_at(v, i, j, k + 1)), 1e-6f);
         double mean8 = 0;
-        for (int c = 0; c < 8; ++c) mean8 += dense_at(v, i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+        for (int c = 0; c < 8; ++c)
+          mean8 += dense_at(v, i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
         EXPECT_NEAR(grid->sample(Vec3(i + 0.5f, j + 0.5f, k + 0.5f)), mean8 / 8, 1e-5);
       }
   // Random points, including the fade-out band just outside the active box.
   std::uniform_real_distribution<float> ux(-1.5f, 9.5f), uy(-1.5f, 7.5f), uz(-1.5f, 8.5f);
   for (int n = 0; n < 5000; ++n) {
     const Vec3 p(ux(rng), uy(rng), uz(rng));
-    ASSERT_NEAR(grid->sample(p), dense_trilinear(v, p.x, p.y, p.z), 2e-5) << p.x << " " << p.y << " " << p.z;
+    ASSERT_NEAR(grid->sample(p), dense_trilinear(v, p.x, p.y, p.z), 2e-5)
+        << p.x << " " << p.y << " " << p.z;
   }
   EXPECT_EQ(grid->sample(Vec3(-1.0f, 3.0f, 3.0f)), 0.0f);
   EXPECT_EQ(grid->sample(Vec3(1e20f, 0.0f, 0.0f)), 0.0f);
@@ -127,7 +135,8 @@ TEST(VdbIo, MissingFileNamesTheFile) {
   const std::string msg = error_of([&] { load_vdb_grid(dir / "nope.vdb", "density"); });
   EXPECT_NE(msg.find("cannot open"), std::string::npos) << msg;
   EXPECT_NE(msg.find("nope.vdb"), std::string::npos) << msg;
-  EXPECT_NE(error_of([&] { list_vdb_grids(dir / "nope.vdb"); }).find("nope.vdb"), std::string::npos);
+  EXPECT_NE(error_of([&] { list_vdb_grids(dir / "nope.vdb"); }).find("nope.vdb"),
+            std::string::npos);
 }
 
 TEST(VdbIo, NotAVdbFileIsAnOpenError) {
@@ -153,12 +162,14 @@ TEST(VdbIo, NanVoxelIsRejectedWithItsCoordinate) {
   VdbTempDir dir;
   DenseVolume v = small_block();
   v.values[(size_t(3) * v.ny + 1) * v.nx + 2] = std::numeric_limits<float>::quiet_NaN();
-  const std::string msg = error_of([&] { load_vdb_grid(write_volume(dir, "nan.vdb", v), "density"); });
+  const std::string msg =
+      error_of([&] { load_vdb_grid(write_volume(dir, "nan.vdb", v), "density"); });
   EXPECT_NE(msg.find("voxel (2, 1, 3)"), std::string::npos) << msg;
   EXPECT_NE(msg.find("nan"), std::string::npos) << msg;
   // Inf too (Inf >= cutoff, so it is active as well).
   v.values[(size_t(3) * v.ny + 1) * v.nx + 2] = std::numeric_limits<float>::infinity();
-  const std::string msg2 = error_of([&] { load_vdb_grid(write_volume(dir, "inf.vdb", v), "density"); });
+  const std::string msg2 =
+      error_of([&] { load_vdb_grid(write_volume(dir, "inf.vdb", v), "density"); });
   EXPECT_NE(msg2.find("voxel (2, 1, 3)"), std::string::npos) << msg2;
   EXPECT_NE(msg2.find("inf"), std::string::npos) << msg2;
 }
@@ -167,7 +178,8 @@ TEST(VdbIo, NegativeVoxelIsRejectedUnlessAllowed) {
   VdbTempDir dir;
   DenseVolume v = small_block();
   v.values[(size_t(0) * v.ny + 2) * v.nx + 1] = -0.5f;
-  const fs::path file = write_volume(dir, "neg.vdb", v, "density", -1e30f);  // keeps negatives active
+  const fs::path file =
+      write_volume(dir, "neg.vdb", v, "density", -1e30f);  // keeps negatives active
   const std::string msg = error_of([&] { load_vdb_grid(file, "density"); });
   EXPECT_NE(msg.find("voxel (1, 2, 0)"), std::string::npos) << msg;
   EXPECT_NE(msg.find("-0.5"), std::string::npos) << msg;
@@ -178,7 +190,8 @@ TEST(VdbIo, NegativeVoxelIsRejectedUnlessAllowed) {
 TEST(VdbIo, EmptyGridIsRejected) {
   VdbTempDir dir;
   const DenseVolume v = make_volume(4, 4, 4, [](int, int, int) { return 0.0f; });
-  const std::string msg = error_of([&] { load_vdb_grid(write_volume(dir, "empty.vdb", v), "density"); });
+  const std::string msg =
+      error_of([&] { load_vdb_grid(write_volume(dir, "empty.vdb", v), "density"); });
   EXPECT_NE(msg.find("no active voxels"), std::string::npos) << msg;
 }
 
@@ -196,11 +209,12 @@ TEST(VdbIo, WriterRejectsInconsistentVolumes) {
 // Files OpenVDB's own tool makes: a level set (non-zero background) and a
 // vec3s grid. vdb_tool comes with libopenvdb-tools (scripts/setup).
 TEST(VdbIo, NonFloatGridAndLevelSetAreRejected) {
-  if (std::system("command -v vdb_tool >/dev/null 2>&1") != 0) GTEST_SKIP() << "vdb_tool not installed";
+  if (std::system("command -v vdb_tool >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "vdb_tool not installed";
   VdbTempDir dir;
   const fs::path file = dir / "tool.vdb";
-  const std::string cmd = "vdb_tool -sphere dim=16 radius=1.0 name=ls -cpt keep=1 -write " + file.string() +
-                          " >/dev/null 2>&1";
+  const std::string cmd = "vdb_tool -sphere dim=16 radius=1.0 name=ls -cpt keep=1 -write " +
+                          file.string() + " >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const std::string msg = error_of([&] { load_vdb_grid(file, "cpt_ls"); });
   EXPECT_NE(msg.find("value type vec3s"), std::string::npos) << msg;
@@ -221,15 +235,16 @@ std::shared_ptr<const DensityGrid> blob_grid(const VdbTempDir& dir, DenseVolume*
     const float r = u(rng);
     const bool blob = (i - 8) * (i - 8) + (j - 10) * (j - 10) + (k - 9) * (k - 9) < 30 ||
                       (i - 30) * (i - 30) + (j - 25) * (j - 25) + (k - 18) * (k - 18) < 50;
-    return blob ? 0.5f + 4.0f * r : (r < 0.002f ? 10.0f * r * 500.0f : 0.0f);  // rare spikes up to 10
+    return blob ? 0.5f + 4.0f * r
+                : (r < 0.002f ? 10.0f * r * 500.0f : 0.0f);  // rare spikes up to 10
   });
   if (out) *out = v;
   return load_vdb_grid(write_volume(dir, "blobs.vdb", v), "density");
 }
 
 // Independent clip of o + t d to the box [lo, hi] in double, within [tmin, tmax].
-bool clip(const Vec3& o, const Vec3& d, double tmin, double tmax, const double lo[3], const double hi[3], double& t0,
-          double& t1) {
+bool clip(const Vec3& o, const Vec3& d, double tmin, double tmax, const double lo[3],
+          const double hi[3], double& t0, double& t1) {
   t0 = tmin;
   t1 = tmax;
   for (int a = 0; a < 3; ++a) {
@@ -298,7 +313,8 @@ TEST(MajorantGrid, RandomRaysSegmentsAreContiguousCoverTheClipAndBoundEverySampl
     if (r % 13 == 0) d.z = 0;
     if (d == Vec3(0.0f)) d.z = 1;
     d = d * (0.2f + 3.0f * u(rng));  // not unit length
-    const float tmin = (r % 3 == 0) ? 0.0f : -5.0f * u(rng), tmax = (r % 5 == 0) ? 1e30f : 200.0f * u(rng);
+    const float tmin = (r % 3 == 0) ? 0.0f : -5.0f * u(rng),
+                tmax = (r % 5 == 0) ? 1e30f : 200.0f * u(rng);
     double c0, c1;
     const bool expect_hit = clip(o, d, tmin, tmax, lo, hi, c0, c1);
     const Walked w = walk_all(mg, o, d, tmin, tmax);
@@ -332,7 +348,8 @@ TEST(MajorantGrid, RandomRaysSegmentsAreContiguousCoverTheClipAndBoundEverySampl
       }
     }
     // Outside the covered range the density is 0 (the grid box holds it all).
-    for (float t : {float(c0) - 0.01f * float(c1 - c0) - 0.01f, float(c1) + 0.01f * float(c1 - c0) + 0.01f})
+    for (float t :
+         {float(c0) - 0.01f * float(c1 - c0) - 0.01f, float(c1) + 0.01f * float(c1 - c0) + 0.01f})
       if (t > tmin && t < tmax) {
         EXPECT_EQ(g->sample(o + d * t), 0.0f) << r;
       }
@@ -341,7 +358,8 @@ TEST(MajorantGrid, RandomRaysSegmentsAreContiguousCoverTheClipAndBoundEverySampl
   EXPECT_GT(samples, 5000);
   EXPECT_GT(nonzero_samples, 500);
   EXPECT_GT(zero_segments, 100);  // empty cells are reported as gaps
-  std::printf("majorant bound: %d rays hit, %ld samples (%ld non-zero)\n", hits, samples, nonzero_samples);
+  std::printf("majorant bound: %d rays hit, %ld samples (%ld non-zero)\n", hits, samples,
+              nonzero_samples);
 }
 
 TEST(MajorantGrid, AxisAlignedRaysInsideAndOutside) {
@@ -386,7 +404,8 @@ TEST(MajorantGrid, VisitorCanStopTheWalk) {
   const auto g = blob_grid(dir);
   const MajorantGrid mg(*g, 4);
   int calls = 0;
-  mg.walk(Vec3(-5, 10, 9), Vec3(1, 0, 0), 0, 1e9f, [&](const MajorantSegment&) { return ++calls < 2; });
+  mg.walk(Vec3(-5, 10, 9), Vec3(1, 0, 0), 0, 1e9f,
+          [&](const MajorantSegment&) { return ++calls < 2; });
   EXPECT_EQ(calls, 2);
 }
 
@@ -420,7 +439,8 @@ TEST(MajorantGrid, FinerCellsAreTighterAndEmptyCellsAreZero) {
 
 TEST(SmokeVdb, LoadsTheRealSmokeSimulation) {
   const fs::path file = fs::path(VESPER_SOURCE_DIR) / "../shared/data/smoke.vdb";
-  if (!fs::exists(file)) GTEST_SKIP() << "real test data absent: " << file << " (shared data is not in the repo)";
+  if (!fs::exists(file))
+    GTEST_SKIP() << "real test data absent: " << file << " (shared data is not in the repo)";
   const auto names = list_vdb_grids(file);
   ASSERT_FALSE(names.empty());
   std::printf("smoke.vdb grids:");
@@ -430,11 +450,12 @@ TEST(SmokeVdb, LoadsTheRealSmokeSimulation) {
 
   auto t0 = std::chrono::steady_clock::now();
   const auto grid = load_vdb_grid(file, "density");
-  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double load_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const IndexBox b = grid->active_box();
   ASSERT_FALSE(b.empty());
-  std::printf("smoke density: box [%d %d %d]..[%d %d %d], max %.4g, loaded in %.3f s\n", b.min[0], b.min[1],
-              b.min[2], b.max[0], b.max[1], b.max[2], grid->max_value(), load_s);
+  std::printf("smoke density: box [%d %d %d]..[%d %d %d], max %.4g, loaded in %.3f s\n", b.min[0],
+              b.min[1], b.min[2], b.max[0], b.max[1], b.max[2], grid->max_value(), load_s);
   EXPECT_GT(grid->max_value(), 0.0f);
   const Vec3d w0 = grid->index_to_world().apply_point({0, 0, 0});
   EXPECT_TRUE(std::isfinite(w0.x) && std::isfinite(w0.y) && std::isfinite(w0.z));
@@ -445,7 +466,8 @@ TEST(SmokeVdb, LoadsTheRealSmokeSimulation) {
     for (int j = b.min[1]; j <= b.max[1]; ++j)
       for (int i = b.min[0]; i <= b.max[0]; ++i) {
         const float v = grid->voxel(i, j, k);
-        ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= grid->max_value()) << i << " " << j << " " << k;
+        ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= grid->max_value())
+            << i << " " << j << " " << k;
         positive += v > 0;
       }
   EXPECT_GT(positive, 100000);
@@ -459,9 +481,10 @@ TEST(SmokeVdb, LoadsTheRealSmokeSimulation) {
   t0 = std::chrono::steady_clock::now();
   double sum = 0;
   for (const Vec3& p : pts) sum += grid->sample(p);
-  const double sample_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("smoke: 1e6 random trilinear samples in %.3f s (%.1f ns/sample, mean %.4g)\n", sample_s,
-              sample_s * 1e3, sum / 1e6);
+  const double sample_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("smoke: 1e6 random trilinear samples in %.3f s (%.1f ns/sample, mean %.4g)\n",
+              sample_s, sample_s * 1e3, sum / 1e6);
   EXPECT_TRUE(std::isfinite(sum));
 
   // Coherent samples (a ray march), which is how the tracker uses them.
@@ -470,16 +493,19 @@ TEST(SmokeVdb, LoadsTheRealSmokeSimulation) {
   for (int n = 0; n < 1000000; ++n) {
     const float t = float(n % 1000) / 1000.0f;
     const int r = n / 1000;
-    sum += grid->sample(Vec3(b.min[0] + t * (b.max[0] - b.min[0]), b.min[1] + (r % 200) * 1.1f, 56.0f + r * 0.01f));
+    sum += grid->sample(
+        Vec3(b.min[0] + t * (b.max[0] - b.min[0]), b.min[1] + (r % 200) * 1.1f, 56.0f + r * 0.01f));
   }
-  const double march_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("smoke: 1e6 coherent (ray-march) samples in %.3f s (%.1f ns/sample)\n", march_s, march_s * 1e3);
+  const double march_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("smoke: 1e6 coherent (ray-march) samples in %.3f s (%.1f ns/sample)\n", march_s,
+              march_s * 1e3);
 
   t0 = std::chrono::steady_clock::now();
   const MajorantGrid mg(*grid, 16);
   const double mg_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("smoke: majorant grid %dx%dx%d cells built in %.3f s\n", mg.cells_x(), mg.cells_y(), mg.cells_z(),
-              mg_s);
+  std::printf("smoke: majorant grid %dx%dx%d cells built in %.3f s\n", mg.cells_x(), mg.cells_y(),
+              mg.cells_z(), mg_s);
 }
 
 // ------------------------------------------------------------------- cloud

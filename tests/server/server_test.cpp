@@ -10,13 +10,13 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <thread>
-#include <mutex>
-#include <map>
 
 #include "server/server.h"
 #include "server/sha256.h"
@@ -111,7 +111,9 @@ class ServerTest : public ::testing::Test {
   std::string register_worker(const std::string& name) {
     return post_ok("/workers/register", {{"name", name}}, wrk()).at("worker_id");
   }
-  json lease(const std::string& worker) { return post_ok("/lease", {{"worker_id", worker}}, wrk()); }
+  json lease(const std::string& worker) {
+    return post_ok("/lease", {{"worker_id", worker}}, wrk());
+  }
 
   fs::path dir_;
   std::shared_ptr<std::atomic<double>> clock_;
@@ -536,8 +538,8 @@ TEST_F(ServerTest, RequestSizeLimitsAre413) {
                    "application/octet-stream");
   EXPECT_EQ(r->status, 201);
   // JSON bodies have their own, smaller limit.
-  const json body{{"name", std::string(c.max_json_bytes, 'n')}, {"scene", sha256_hex(fits)},
-                  {"frames", "1"}};
+  const json body{
+      {"name", std::string(c.max_json_bytes, 'n')}, {"scene", sha256_hex(fits)}, {"frames", "1"}};
   r = post("/jobs", body, sub());
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 413);
@@ -557,7 +559,8 @@ TEST_F(ServerTest, ConcurrentWorkersNeverShareATask) {
   start();
   const int64_t job = submit(24, 8, 4);  // 48 tasks
   std::vector<std::string> ids;
-  for (const char* name : {"w0", "w1", "w2", "w3", "w4", "w5"}) ids.push_back(register_worker(name));
+  for (const char* name : {"w0", "w1", "w2", "w3", "w4", "w5"})
+    ids.push_back(register_worker(name));
   std::mutex mu;
   std::map<int64_t, int> completed;  // task id -> times completed
   std::vector<std::thread> threads;
@@ -569,7 +572,8 @@ TEST_F(ServerTest, ConcurrentWorkersNeverShareATask) {
         if (!r || r->status != 200) break;
         const json l = json::parse(r->body);
         const std::string bytes = "result " + l.at("task").at("id").dump();
-        c.Put(("/api/v1/blobs/" + sha256_hex(bytes)).c_str(), wrk(), bytes, "application/octet-stream");
+        c.Put(("/api/v1/blobs/" + sha256_hex(bytes)).c_str(), wrk(), bytes,
+              "application/octet-stream");
         r = c.Post("/api/v1/complete", wrk(),
                    json{{"lease_id", l.at("lease_id")}, {"result", sha256_hex(bytes)}}.dump(),
                    "application/json");

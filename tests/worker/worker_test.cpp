@@ -10,12 +10,12 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <cstring>
 #include <future>
-#include <set>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -110,7 +110,9 @@ class WorkerTest : public ::testing::Test {
     c.set_read_timeout(30);
     return c;
   }
-  httplib::Headers sub() const { return {{"Authorization", "Bearer " + server_->submitter_token()}}; }
+  httplib::Headers sub() const {
+    return {{"Authorization", "Bearer " + server_->submitter_token()}};
+  }
   httplib::Headers wrk() const { return {{"Authorization", "Bearer " + server_->worker_token()}}; }
 
   std::string put_blob(const std::string& bytes) {
@@ -286,8 +288,10 @@ TEST_F(WorkerTest, FailingRendererFailsTasksAndBlocklistsTheWorker) {
     ++failed_seen;
     EXPECT_EQ(t.at("attempts"), 2);
     EXPECT_TRUE(t.at("has_log").get<bool>());
-    const std::string id = t.at("id").is_string() ? t.at("id").get<std::string>() : t.at("id").dump();
-    const std::string jid = j.at("id").is_string() ? j.at("id").get<std::string>() : j.at("id").dump();
+    const std::string id =
+        t.at("id").is_string() ? t.at("id").get<std::string>() : t.at("id").dump();
+    const std::string jid =
+        j.at("id").is_string() ? j.at("id").get<std::string>() : j.at("id").dump();
     auto r = client().Get(("/api/v1/jobs/" + jid + "/tasks/" + id + "/log").c_str(), sub());
     ASSERT_TRUE(r && r->status == 200);
     EXPECT_NE(r->body.find("invalid JSON at line"), std::string::npos) << r->body;
@@ -332,10 +336,11 @@ TEST_F(WorkerTest, CancelKillsTheRunningRender) {
     if (!running) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   ASSERT_TRUE(running);
-  const std::string jid = created.at("id").is_string() ? created.at("id").get<std::string>()
-                                                      : created.at("id").dump();
+  const std::string jid =
+      created.at("id").is_string() ? created.at("id").get<std::string>() : created.at("id").dump();
   const auto canceled_at = std::chrono::steady_clock::now();
-  auto r = client().Post(("/api/v1/jobs/" + jid + "/cancel").c_str(), sub(), "{}", "application/json");
+  auto r =
+      client().Post(("/api/v1/jobs/" + jid + "/cancel").c_str(), sub(), "{}", "application/json");
   ASSERT_TRUE(r && r->status == 200) << (r ? r->body : "no answer");
 
   ASSERT_EQ(done.wait_for(std::chrono::seconds(15)), std::future_status::ready)
@@ -418,7 +423,8 @@ TEST_F(WorkerTest, CrashingRendererFailsTheTaskNotTheWorker) {
   EXPECT_EQ(worker.tasks_failed(), 2);
   const json j = job(created.at("id"));
   EXPECT_EQ(j.at("counts").at("failed"), 2) << j.dump();
-  const std::string jid = j.at("id").is_string() ? j.at("id").get<std::string>() : j.at("id").dump();
+  const std::string jid =
+      j.at("id").is_string() ? j.at("id").get<std::string>() : j.at("id").dump();
   const json& t = j.at("tasks").at(0);
   const std::string id = t.at("id").is_string() ? t.at("id").get<std::string>() : t.at("id").dump();
   auto r = client().Get(("/api/v1/jobs/" + jid + "/tasks/" + id + "/log").c_str(), sub());
