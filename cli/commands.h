@@ -16,9 +16,24 @@ struct RenderCommandOptions {
   std::optional<std::string> aovs;  // comma-separated
   int sample_begin = 0;
   std::optional<int> sample_end;
+  // Frame number: decorrelates the frame's noise from other frames (the seed
+  // becomes frame_seed(seed, frame)) and is stamped as vesper:frame.
+  std::optional<int> frame;
+  // Write a partial render (docs/partial-format.md): the exact per-pixel
+  // sample sums of [sample_begin, sample_end), which `vesper merge` combines.
+  bool partial = false;
   bool quiet = false;
 };
 int run_render(const RenderCommandOptions& options);
+
+// vesper merge: partial renders of disjoint sample ranges of one frame ->
+// one EXR, bitwise identical to a single render of the union of the ranges.
+struct MergeCommandOptions {
+  std::vector<std::string> inputs;  // partial files
+  std::string output;               // EXR
+  bool quiet = false;
+};
+int run_merge(const MergeCommandOptions& options);
 
 // vesper comp: composite layered EXR passes from a recipe (docs/compositing.md)
 // or from quick flags (`vesper comp in.exr --layer lightrays:0.8 -o out.png`).

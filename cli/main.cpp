@@ -31,7 +31,21 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   r->add_option("--sample-end", render.sample_end, "One past the last sample index (default: spp)")
       ->check(CLI::NonNegativeNumber);
+  r->add_option("--frame", render.frame,
+                "Frame number: decorrelates this frame's noise from other frames' (same scene, "
+                "same seed)");
+  r->add_flag("--partial", render.partial,
+              "Write a partial render (exact sample sums) for `vesper merge` instead of an EXR");
   r->add_flag("-q,--quiet", render.quiet, "Print only the output path");
+
+  vesper::cli::MergeCommandOptions merge;
+  auto* me = app.add_subcommand(
+      "merge", "Merge partial renders of disjoint sample ranges of one frame into one EXR");
+  me->add_option("inputs", merge.inputs, "Partial render files (vesper render --partial)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  me->add_option("-o,--output", merge.output, "Output EXR path")->required();
+  me->add_flag("-q,--quiet", merge.quiet, "Print only the output path");
 
   vesper::cli::CompCommandOptions comp;
   auto* co = app.add_subcommand(
@@ -100,6 +114,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (r->parsed()) return vesper::cli::run_render(render);
+    if (me->parsed()) return vesper::cli::run_merge(merge);
     if (co->parsed()) return vesper::cli::run_comp(comp);
     if (vc->parsed()) return vesper::cli::run_vdb_cloud(vdb_cloud);
     if (vi->parsed()) return vesper::cli::run_vdb_info(vdb_info);

@@ -7,6 +7,7 @@
 #include "cli/progress.h"
 #include "renderer/output/exr_io.h"
 #include "renderer/render/frame.h"
+#include "renderer/sampling/sampler.h"
 #include "renderer/scene/aov_names.h"
 #include "renderer/scene/scene_loader.h"
 
@@ -35,6 +36,10 @@ std::vector<Aov> parse_aovs(const std::string& list) {
 }  // namespace
 
 int run_render(const RenderCommandOptions& o) {
+  if (o.partial) {
+    spdlog::error("--partial: partial renders are not implemented yet");
+    return 2;
+  }
   RenderOptions ro;
   try {
     if (o.aovs) ro.aovs = parse_aovs(*o.aovs);
@@ -56,6 +61,7 @@ int run_render(const RenderCommandOptions& o) {
   }
   ro.spp = o.spp;
   ro.seed = o.seed;
+  if (o.frame) ro.seed = frame_seed(o.seed.value_or(desc.render.seed), *o.frame);
   if (o.threads) ro.threads = *o.threads;
   ro.sample_begin = o.sample_begin;
   ro.sample_end = o.sample_end;
@@ -74,6 +80,7 @@ int run_render(const RenderCommandOptions& o) {
   if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
   FrameResult result = render_frame(desc, ro);
   progress.finish();
+  if (o.frame) result.image.metadata["vesper:frame"] = std::to_string(*o.frame);
 
   try {
     write_exr(result.image, out_path);

@@ -20,6 +20,12 @@ constexpr uint64_t hash_combine(uint64_t a, uint64_t b) {
   return mix64(a ^ (b + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2)));
 }
 
+// The seed of frame `frame` of an animation: frames get independent noise
+// (like Cycles' animated seed) while each stays reproducible.
+constexpr uint64_t frame_seed(uint64_t seed, int64_t frame) {
+  return hash_combine(seed, uint64_t(frame) ^ 0x6672616d65ULL);
+}
+
 // Uniform float in [0, 1) from the top 24 bits.
 constexpr float to_unit_float(uint64_t bits) { return float(bits >> 40) * 0x1p-24f; }
 
