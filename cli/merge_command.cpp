@@ -1,13 +1,50 @@
-// vesper merge — placeholder until the partial format lands (issue 6).
+// vesper merge: partial renders (vesper render --partial) of disjoint sample
+// ranges of one frame -> one EXR, bitwise identical to a single render of the
+// union of the ranges (docs/partial-format.md).
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
+#include <filesystem>
+
 #include "cli/commands.h"
+#include "renderer/output/exr_io.h"
+#include "renderer/output/partial_io.h"
 
 namespace vesper::cli {
 
-int run_merge(const MergeCommandOptions&) {
-  spdlog::error("vesper merge: partial renders are not implemented yet");
-  return 2;
+int run_merge(const MergeCommandOptions& o) {
+  const std::filesystem::path out_path(o.output);
+  if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path())) {
+    spdlog::error("{}: output directory does not exist", out_path.parent_path().string());
+    return 2;
+  }
+  LayeredImage merged;
+  std::vector<Partial> parts;
+  try {
+    parts.reserve(o.inputs.size());
+    for (const std::string& in : o.inputs) parts.push_back(read_partial(in));
+    merged = merge_partials(parts);
+  } catch (const PartialError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  try {
+    write_exr(merged, out_path);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  const int frame_spp = parts.front().frame_spp;
+  const std::string& begin = merged.metadata.at("vesper:sample_begin");
+  const std::string& end = merged.metadata.at("vesper:sample_end");
+  if (begin != "0" || end != std::to_string(frame_spp))
+    spdlog::warn("merged samples [{}, {}) of a {}-spp frame: the frame is not complete", begin, end,
+                 frame_spp);
+  if (!o.quiet)
+    spdlog::info("merged {} partials, samples [{}, {}), into {}", parts.size(), begin, end,
+                 out_path.string());
+  std::printf("%s\n", out_path.string().c_str());
+  return 0;
 }
 
 }  // namespace vesper::cli

@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "renderer/output/exr_io.h"
+#include "renderer/output/partial_io.h"
 #include "renderer/render/frame.h"
 #include "renderer/sampling/sampler.h"
 #include "renderer/scene/aov_names.h"
@@ -36,10 +37,6 @@ std::vector<Aov> parse_aovs(const std::string& list) {
 }  // namespace
 
 int run_render(const RenderCommandOptions& o) {
-  if (o.partial) {
-    spdlog::error("--partial: partial renders are not implemented yet");
-    return 2;
-  }
   RenderOptions ro;
   try {
     if (o.aovs) ro.aovs = parse_aovs(*o.aovs);
@@ -65,10 +62,23 @@ int run_render(const RenderCommandOptions& o) {
   if (o.threads) ro.threads = *o.threads;
   ro.sample_begin = o.sample_begin;
   ro.sample_end = o.sample_end;
+  ro.keep_sums = o.partial;
   const int spp = o.spp.value_or(desc.render.spp);
   if (ro.sample_begin < 0 || ro.sample_end.value_or(spp) < ro.sample_begin) {
     spdlog::error("--samples: expected 0 <= begin <= end, got [{}, {})", ro.sample_begin,
                   ro.sample_end.value_or(spp));
+    return 2;
+  }
+  if (int64_t(ro.sample_end.value_or(spp)) - ro.sample_begin > kMaxExactSamples) {
+    spdlog::error(
+        "--samples: [{}, {}) is more than {} samples per pixel; split it into ranges "
+        "(--sample-begin/--sample-end --partial) and merge them",
+        ro.sample_begin, ro.sample_end.value_or(spp), kMaxExactSamples);
+    return 2;
+  }
+  if (o.partial && ro.sample_end.value_or(spp) == ro.sample_begin) {
+    spdlog::error("--partial: the sample range [{}, {}) is empty", ro.sample_begin,
+                  ro.sample_begin);
     return 2;
   }
 
@@ -83,7 +93,11 @@ int run_render(const RenderCommandOptions& o) {
   if (o.frame) result.image.metadata["vesper:frame"] = std::to_string(*o.frame);
 
   try {
-    write_exr(result.image, out_path);
+    if (o.partial)
+      write_partial(make_partial(result.image, std::move(result.sums), spp, out_path.string()),
+                    out_path);
+    else
+      write_exr(result.image, out_path);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

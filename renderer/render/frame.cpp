@@ -33,34 +33,36 @@ bool layer_has_alpha(const LayerDesc& layer, const SceneDescription& scene) {
   return layer.paths != PathSelection::Surface && !scene.media.empty();
 }
 
-// Appends src's channels (all of them) to dst; both have the same size.
-void append_channels(LayeredImage& dst, const LayeredImage& src) {
-  const size_t nd = dst.channel_count(), ns = src.channel_count(), n = nd + ns;
-  std::vector<float> merged(size_t(dst.width) * size_t(dst.height) * n);
-  for (size_t p = 0; p < size_t(dst.width) * size_t(dst.height); ++p) {
-    std::copy_n(&dst.pixels[p * nd], nd, &merged[p * n]);
-    std::copy_n(&src.pixels[p * ns], ns, &merged[p * n + nd]);
+// Appends the ns channels of src to the nd channels of dst (both
+// pixel-interleaved over `pixels` pixels).
+template <typename T>
+void append_interleaved(std::vector<T>& dst, size_t nd, const std::vector<T>& src, size_t ns,
+                        size_t pixels) {
+  const size_t n = nd + ns;
+  std::vector<T> merged(pixels * n);
+  for (size_t p = 0; p < pixels; ++p) {
+    std::copy_n(&dst[p * nd], nd, &merged[p * n]);
+    std::copy_n(&src[p * ns], ns, &merged[p * n + nd]);
   }
-  dst.pixels = std::move(merged);
-  dst.channels.insert(dst.channels.end(), src.channels.begin(), src.channels.end());
+  dst = std::move(merged);
 }
 
-// Keeps only the channels whose names start with prefix + ".".
-LayeredImage select_layer(const LayeredImage& img, const std::string& prefix) {
-  LayeredImage out;
-  out.width = img.width;
-  out.height = img.height;
+// Keeps the channels `keep` of the n channels of src.
+template <typename T>
+std::vector<T> select_interleaved(const std::vector<T>& src, size_t n,
+                                  const std::vector<size_t>& keep, size_t pixels) {
+  std::vector<T> out(pixels * keep.size());
+  for (size_t p = 0; p < pixels; ++p)
+    for (size_t k = 0; k < keep.size(); ++k) out[p * keep.size() + k] = src[p * n + keep[k]];
+  return out;
+}
+
+// The channels whose names start with prefix + ".".
+std::vector<size_t> layer_channels(const LayeredImage& img, const std::string& prefix) {
   std::vector<size_t> keep;
   for (size_t c = 0; c < img.channel_count(); ++c)
-    if (img.channels[c].rfind(prefix + ".", 0) == 0) {
-      keep.push_back(c);
-      out.channels.push_back(img.channels[c]);
-    }
-  out.pixels.resize(size_t(img.width) * size_t(img.height) * keep.size());
-  for (size_t p = 0; p < size_t(img.width) * size_t(img.height); ++p)
-    for (size_t k = 0; k < keep.size(); ++k)
-      out.pixels[p * keep.size() + k] = img.pixels[p * img.channel_count() + keep[k]];
-  return out;
+    if (img.channels[c].rfind(prefix + ".", 0) == 0) keep.push_back(c);
+  return keep;
 }
 
 }  // namespace
@@ -125,6 +127,7 @@ FrameResult render_frame(const SceneDescription& desc, const RenderOptions& opti
   RenderResult beauty = render(build_scene(desc), base);
   frame.image = std::move(beauty.image);
   frame.stats = beauty.stats;
+  frame.sums = std::move(beauty.sums);
   for (const LayerDesc* layer : variants) {
     ++pass_index;
     const SceneDescription vdesc = apply_variant(desc, *layer->variant);
@@ -133,7 +136,15 @@ FrameResult render_frame(const SceneDescription& desc, const RenderOptions& opti
     vo.layers = {{layer->name, layer->paths, layer->lights, layer_has_alpha(*layer, vdesc)}};
     vo.on_progress = progress;
     const RenderResult r = render(build_scene(vdesc), vo);
-    append_channels(frame.image, select_layer(r.image, layer->name));
+    const size_t pixels = size_t(r.image.width) * size_t(r.image.height);
+    const size_t nd = frame.image.channel_count(), ns = r.image.channel_count();
+    const std::vector<size_t> keep = layer_channels(r.image, layer->name);
+    append_interleaved(frame.image.pixels, nd, select_interleaved(r.image.pixels, ns, keep, pixels),
+                       keep.size(), pixels);
+    if (options.keep_sums)
+      append_interleaved(frame.sums, nd, select_interleaved(r.sums, ns, keep, pixels), keep.size(),
+                         pixels);
+    for (size_t k : keep) frame.image.channels.push_back(r.image.channels[k]);
     frame.stats.seconds += r.stats.seconds;
     frame.stats.rays += r.stats.rays;
     frame.stats.camera_samples += r.stats.camera_samples;

@@ -11,10 +11,14 @@ struct FrameResult {
   LayeredImage image;
   RenderStats stats;  // summed over the beauty pass and every variant pass
   int passes = 1;
+  // With RenderOptions::keep_sums: the exact sample sums of every channel of
+  // `image` (same layout and channel order, see RenderResult::sums).
+  std::vector<ExactSum> sums;
 };
 
 // `options.layers` is ignored: the layers come from desc.layers. Progress is
-// reported over all passes together.
+// reported over all passes together. `options.keep_sums` carries the exact
+// sums of every pass through the same channel mapping as the image.
 FrameResult render_frame(const SceneDescription& desc, const RenderOptions& options = {});
 
 // The scene as a variant layer sees it: medium overrides applied, removed

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <stdexcept>
 
 #include "renderer/integrator/path_tracer.h"
 #include "renderer/sampling/pixel_filter.h"
@@ -162,18 +163,23 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   std::atomic<size_t> tiles_done{0};
   std::atomic<uint64_t> total_rays{0}, total_nonfinite{0};
   const int count = std::max(0, sample_end - sample_begin);
+  if (count > kMaxExactSamples)
+    throw std::invalid_argument(
+        "render: " + std::to_string(count) + " samples per pixel in one range; at most " +
+        std::to_string(kMaxExactSamples) + " fit the exact sample sums (split the range)");
+  if (options.keep_sums) out.sums.assign(img.pixels.size(), 0);
 
   auto render_tile = [&](size_t tile) {
     set_flush_to_zero();
     const int tx = int(tile % size_t(tiles_x)), ty = int(tile / size_t(tiles_x));
     uint64_t rays = 0, nonfinite = 0;
-    std::vector<double> acc(nch);
+    std::vector<ExactSum> acc(nch);
     PathRecord record(int(scene.group_names.size()));
     PathTracerOptions tile_pt = pt;
     if (want_record) tile_pt.record = &record;
     for (int y = ty * kTileSize; y < std::min(height, (ty + 1) * kTileSize); ++y) {
       for (int x = tx * kTileSize; x < std::min(width, (tx + 1) * kTileSize); ++x) {
-        std::fill(acc.begin(), acc.end(), 0.0);
+        std::fill(acc.begin(), acc.end(), ExactSum(0));
         const uint64_t pixel_index = uint64_t(y) * uint64_t(width) + uint64_t(x);
         for (int s = sample_begin; s < sample_end; ++s) {
           Sampler sampler(seed, pixel_index, uint64_t(s));
@@ -187,27 +193,30 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
           if (!r.radiance.is_finite()) {
             ++nonfinite;
           } else {
-            acc[0] += r.radiance.r;
-            acc[1] += r.radiance.g;
-            acc[2] += r.radiance.b;
+            acc[0] += to_fixed(r.radiance.r);
+            acc[1] += to_fixed(r.radiance.g);
+            acc[2] += to_fixed(r.radiance.b);
             for (const BinOutput& o : layout.bin_outputs) {
               Rgb sum;
               for (size_t b : o.bins) sum += record.bins()[b];
-              for (int c = 0; c < 3; ++c) acc[size_t(o.channel + c)] += sum[c];
+              for (int c = 0; c < 3; ++c) acc[size_t(o.channel + c)] += to_fixed(sum[c]);
             }
           }
-          acc[3] += r.alpha;
+          acc[3] += to_fixed(r.alpha);
           for (const BinOutput& o : layout.bin_outputs)
             if (o.alpha_channel >= 0 && std::isfinite(r.camera_transmittance))
-              acc[size_t(o.alpha_channel)] += 1.0 - r.camera_transmittance;
+              acc[size_t(o.alpha_channel)] += to_fixed(float(1.0 - r.camera_transmittance));
           if (layout.albedo >= 0 && r.albedo.is_finite())
-            for (int c = 0; c < 3; ++c) acc[size_t(layout.albedo + c)] += r.albedo[c];
+            for (int c = 0; c < 3; ++c) acc[size_t(layout.albedo + c)] += to_fixed(r.albedo[c]);
           if (layout.normal >= 0 && is_finite(r.normal))
-            for (int c = 0; c < 3; ++c) acc[size_t(layout.normal + c)] += r.normal[c];
-          if (layout.depth >= 0 && std::isfinite(r.depth)) acc[size_t(layout.depth)] += r.depth;
+            for (int c = 0; c < 3; ++c) acc[size_t(layout.normal + c)] += to_fixed(r.normal[c]);
+          if (layout.depth >= 0 && std::isfinite(r.depth))
+            acc[size_t(layout.depth)] += to_fixed(r.depth);
         }
-        const double inv = count > 0 ? 1.0 / double(count) : 0.0;
-        for (size_t c = 0; c < nch; ++c) img.at(x, y, c) = float(acc[c] * inv);
+        const size_t base = size_t(pixel_index) * nch;
+        for (size_t c = 0; c < nch; ++c) img.pixels[base + c] = exact_mean(acc[c], count);
+        if (options.keep_sums)
+          std::copy(acc.begin(), acc.end(), out.sums.begin() + ptrdiff_t(base));
       }
     }
     total_rays += rays;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "renderer/output/exact_sum.h"
 #include "renderer/output/layered_image.h"
 #include "renderer/scene/scene.h"
 
@@ -26,9 +27,15 @@ struct RenderOptions {
   std::optional<uint64_t> seed;          // overrides render.seed
   std::optional<std::vector<Aov>> aovs;  // overrides render.aovs
   // Renders sample indices [sample_begin, sample_end) of the pixel estimate;
-  // sample_end defaults to spp. Disjoint ranges merge by sample count.
+  // sample_end defaults to spp. At most kMaxExactSamples samples per range
+  // (std::invalid_argument otherwise). Pixels are exact_mean() of fixed-point
+  // sums (output/exact_sum.h), so disjoint ranges merge bitwise through
+  // their sums (output/partial_io.h).
   int sample_begin = 0;
   std::optional<int> sample_end;
+  // Also return the exact per-pixel sample sums (RenderResult::sums), for a
+  // partial render. Costs 16 bytes per pixel and channel; off by default.
+  bool keep_sums = false;
   bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
   std::vector<LayerSelection> layers;  // path-selection layers, same pass as the beauty
   // Called from worker threads after each tile (must be thread-safe).
@@ -45,6 +52,10 @@ struct RenderStats {
 struct RenderResult {
   LayeredImage image;
   RenderStats stats;
+  // With RenderOptions::keep_sums: the fixed-point sample sums, laid out like
+  // image.pixels (pixel-major, image.channels order); image.pixels[i] ==
+  // exact_mean(sums[i], sample count). Empty otherwise.
+  std::vector<ExactSum> sums;
 };
 
 RenderResult render(const Scene& scene, const RenderOptions& options = {});

@@ -31,11 +31,14 @@ TEST(Determinism, DifferentSeedsGiveDifferentImages) {
   EXPECT_NE(render(scene, a).image.pixels, render(scene, b).image.pixels);
 }
 
-TEST(Determinism, SampleRangesMergeToTheFullEstimate) {
-  // [0,3) and [3,8) weighted by sample count equal [0,8) up to float rounding
-  // of the stored means: the same samples are summed.
-  const Scene scene = build_scene(small_cornell(32, 32, 8));
+TEST(Determinism, SampleRangesMergeBitwiseToTheFullRender) {
+  // [0,3) and [3,8) add their exact fixed-point sums to those of [0,8), and
+  // the pixels are formed from (sum, count) by the same function.
+  SceneDescription d = small_cornell(32, 32, 8);
+  d.render.aovs = {Aov::Albedo, Aov::Normal, Aov::Depth};
+  const Scene scene = build_scene(d);
   RenderOptions full, first, second;
+  full.keep_sums = first.keep_sums = second.keep_sums = true;
   first.sample_end = 3;
   second.sample_begin = 3;
   const RenderResult f = render(scene, full);
@@ -43,15 +46,34 @@ TEST(Determinism, SampleRangesMergeToTheFullEstimate) {
   const RenderResult b = render(scene, second);
   EXPECT_EQ(a.image.metadata.at("vesper:spp"), "3");
   EXPECT_EQ(b.image.metadata.at("vesper:spp"), "5");
-  double max_rel = 0;
-  for (size_t i = 0; i < f.image.pixels.size(); ++i) {
-    const double merged = (3.0 * a.image.pixels[i] + 5.0 * b.image.pixels[i]) / 8.0;
-    const double ref = f.image.pixels[i];
-    max_rel = std::max(max_rel, std::abs(merged - ref) / std::max(std::abs(ref), 1e-3));
+  ASSERT_EQ(a.sums.size(), f.image.pixels.size());
+  ASSERT_EQ(b.sums.size(), f.image.pixels.size());
+  std::vector<float> merged(f.image.pixels.size());
+  for (size_t i = 0; i < merged.size(); ++i) {
+    ASSERT_TRUE(a.sums[i] + b.sums[i] == f.sums[i]) << i;
+    merged[i] = exact_mean(a.sums[i] + b.sums[i], 8);
   }
-  EXPECT_LT(max_rel, 1e-6);
+  EXPECT_EQ(0, std::memcmp(merged.data(), f.image.pixels.data(), merged.size() * sizeof(float)));
   // And a range is not the full render (the test can fail).
   EXPECT_NE(a.image.pixels, f.image.pixels);
+}
+
+TEST(Determinism, KeepingTheSumsDoesNotChangeTheImage) {
+  const Scene scene = build_scene(small_cornell(16, 16, 4));
+  RenderOptions with;
+  with.keep_sums = true;
+  const RenderResult a = render(scene), b = render(scene, with);
+  EXPECT_TRUE(a.sums.empty());
+  EXPECT_EQ(b.sums.size(), b.image.pixels.size());
+  EXPECT_EQ(a.image.pixels, b.image.pixels);
+  for (size_t i = 0; i < b.sums.size(); ++i) ASSERT_EQ(exact_mean(b.sums[i], 4), b.image.pixels[i]);
+}
+
+TEST(Determinism, RefusesRangesLongerThanTheExactSumsHold) {
+  const Scene scene = build_scene(small_cornell(4, 4, 1));
+  RenderOptions o;
+  o.sample_end = int(kMaxExactSamples) + 1;
+  EXPECT_THROW(render(scene, o), std::invalid_argument);
 }
 
 }  // namespace

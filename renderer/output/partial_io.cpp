@@ -1,0 +1,431 @@
+#include "renderer/output/partial_io.h"
+
+#include <unistd.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <set>
+#include <sstream>
+#include <system_error>
+
+namespace vesper {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr char kMagic[] = "VESPER-PARTIAL\n";
+constexpr size_t kMagicSize = sizeof(kMagic) - 1;
+constexpr const char* kFormat = "vesper-partial/1";
+constexpr const char* kEncoding = "int128-le-q64";
+constexpr size_t kMaxHeaderBytes = size_t(16) << 20;
+constexpr int kMaxDimension = 1 << 16;
+
+// Metadata keys that render() writes and the partial carries as its own fields.
+const std::set<std::string>& range_keys() {
+  static const std::set<std::string> keys{"vesper:scene_hash",     "vesper:spp",
+                                          "vesper:sample_begin",   "vesper:sample_end",
+                                          "vesper:seed",           "vesper:renderer_version",
+                                          "vesper:render_seconds", "vesper:nonfinite_samples"};
+  return keys;
+}
+
+[[noreturn]] void fail(const std::string& source, const std::string& what) {
+  throw PartialError(source + ": " + what);
+}
+
+std::string range_text(const Partial& p) {
+  return "[" + std::to_string(p.sample_begin) + ", " + std::to_string(p.sample_end) + ")";
+}
+
+size_t sum_count(int width, int height, size_t channels) {
+  return size_t(width) * size_t(height) * channels;
+}
+
+// Two's complement, little endian, 16 bytes per sum.
+std::vector<unsigned char> encode_sums(const std::vector<ExactSum>& sums) {
+  std::vector<unsigned char> bytes(sums.size() * 16);
+  for (size_t i = 0; i < sums.size(); ++i) {
+    auto u = static_cast<unsigned __int128>(sums[i]);
+    for (int b = 0; b < 16; ++b, u >>= 8) bytes[i * 16 + size_t(b)] = (unsigned char)(u & 0xff);
+  }
+  return bytes;
+}
+
+std::vector<ExactSum> decode_sums(const unsigned char* bytes, size_t count) {
+  std::vector<ExactSum> sums(count);
+  for (size_t i = 0; i < count; ++i) {
+    unsigned __int128 u = 0;
+    for (int b = 15; b >= 0; --b) u = (u << 8) | bytes[i * 16 + size_t(b)];
+    sums[i] = static_cast<ExactSum>(u);
+  }
+  return sums;
+}
+
+uint32_t crc_of(const std::vector<unsigned char>& bytes) {
+  uLong crc = crc32(0L, Z_NULL, 0);
+  size_t done = 0;
+  while (done < bytes.size()) {  // crc32 takes uInt lengths
+    const size_t n = std::min<size_t>(bytes.size() - done, size_t(1) << 30);
+    crc = crc32(crc, bytes.data() + done, uInt(n));
+    done += n;
+  }
+  return uint32_t(crc);
+}
+
+// Checked access to the header's keys.
+class Header {
+ public:
+  Header(const json& j, std::string source) : j_(j), source_(std::move(source)) {}
+
+  const json& get(const std::string& key, json::value_t type, const char* expected) const {
+    const auto it = j_.find(key);
+    if (it == j_.end()) fail(source_, "header: missing key '" + key + "'");
+    const bool ok =
+        type == json::value_t::number_integer
+            ? it->is_number_integer()
+            : (type == json::value_t::number_float ? it->is_number() : it->type() == type);
+    if (!ok)
+      fail(source_, "header: key '" + key + "': expected " + expected + ", got " + it->dump());
+    return *it;
+  }
+  int64_t integer(const std::string& key, int64_t lo, int64_t hi) const {
+    const json& v = get(key, json::value_t::number_integer, "an integer");
+    if (v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(std::numeric_limits<int64_t>::max()))
+      fail(source_, "header: key '" + key + "': out of range: " + v.dump());
+    const int64_t x = v.get<int64_t>();
+    if (x < lo || x > hi)
+      fail(source_, "header: key '" + key + "': expected an integer in [" + std::to_string(lo) +
+                        ", " + std::to_string(hi) + "], got " + v.dump());
+    return x;
+  }
+  uint64_t unsigned_integer(const std::string& key) const {
+    const json& v = get(key, json::value_t::number_integer, "a non-negative integer");
+    if (!v.is_number_unsigned() && v.get<int64_t>() < 0)
+      fail(source_, "header: key '" + key + "': expected a non-negative integer, got " + v.dump());
+    return v.get<uint64_t>();
+  }
+  std::string string(const std::string& key) const {
+    return get(key, json::value_t::string, "a string").get<std::string>();
+  }
+  void only_keys(std::initializer_list<const char*> keys, const std::string& where) const {
+    for (const auto& [k, v] : j_.items())
+      if (std::none_of(keys.begin(), keys.end(), [&](const char* a) { return k == a; }))
+        fail(source_, where + ": unknown key '" + k + "'");
+  }
+
+ private:
+  const json& j_;
+  std::string source_;
+};
+
+// The header and the compressed sums of one partial.
+std::string header_line(const Partial& p, size_t raw_bytes, size_t compressed_bytes, uint32_t crc) {
+  json h;
+  h["format"] = kFormat;
+  h["width"] = p.width;
+  h["height"] = p.height;
+  h["channels"] = p.channels;
+  h["sample_begin"] = p.sample_begin;
+  h["sample_end"] = p.sample_end;
+  h["frame_spp"] = p.frame_spp;
+  h["seed"] = p.seed;
+  h["scene_hash"] = p.scene_hash;
+  h["renderer_version"] = p.renderer_version;
+  h["nonfinite_samples"] = p.nonfinite_samples;
+  h["render_seconds"] = p.render_seconds;
+  h["metadata"] = p.metadata;
+  h["sums"] = {{"encoding", kEncoding},
+               {"compression", "zlib"},
+               {"bytes", raw_bytes},
+               {"compressed_bytes", compressed_bytes},
+               {"crc32", crc}};
+  return h.dump() + "\n";
+}
+
+void check_sums_size(const Partial& p) {
+  if (p.sums.size() != sum_count(p.width, p.height, p.channels.size()))
+    fail(p.source, "holds " + std::to_string(p.sums.size()) + " sums, expected " +
+                       std::to_string(p.width) + "x" + std::to_string(p.height) + "x" +
+                       std::to_string(p.channels.size()) + " = " +
+                       std::to_string(sum_count(p.width, p.height, p.channels.size())));
+}
+
+}  // namespace
+
+Partial make_partial(const LayeredImage& image, std::vector<ExactSum> sums, int frame_spp,
+                     std::string source) {
+  Partial p;
+  p.source = std::move(source);
+  p.width = image.width;
+  p.height = image.height;
+  p.channels = image.channels;
+  p.frame_spp = frame_spp;
+  auto key = [&](const char* k) -> const std::string& {
+    const auto it = image.metadata.find(k);
+    if (it == image.metadata.end()) fail(p.source, std::string("image metadata lacks ") + k);
+    return it->second;
+  };
+  try {
+    p.sample_begin = std::stoi(key("vesper:sample_begin"));
+    p.sample_end = std::stoi(key("vesper:sample_end"));
+    p.seed = std::stoull(key("vesper:seed"));
+    p.nonfinite_samples = std::stoull(key("vesper:nonfinite_samples"));
+    p.render_seconds = std::stod(key("vesper:render_seconds"));
+  } catch (const std::logic_error& e) {  // std::stoi & co.
+    fail(p.source, std::string("image metadata: bad number: ") + e.what());
+  }
+  p.scene_hash = key("vesper:scene_hash");
+  p.renderer_version = key("vesper:renderer_version");
+  for (const auto& [k, v] : image.metadata)
+    if (!range_keys().count(k)) p.metadata[k] = v;
+  p.sums = std::move(sums);
+  check_sums_size(p);
+  return p;
+}
+
+void write_partial(const Partial& p, const fs::path& path) {
+  check_sums_size(p);
+  const std::vector<unsigned char> raw = encode_sums(p.sums);
+  uLongf compressed_size = compressBound(uLong(raw.size()));
+  std::vector<unsigned char> compressed(compressed_size);
+  if (compress2(compressed.data(), &compressed_size, raw.data(), uLong(raw.size()), 6) != Z_OK)
+    throw PartialError("cannot write " + path.string() + ": zlib compression failed");
+  compressed.resize(compressed_size);
+  const std::string header = header_line(p, raw.size(), compressed.size(), crc_of(raw));
+
+  const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw PartialError("cannot write " + path.string() + ": cannot create " + tmp.string());
+    f.write(kMagic, std::streamsize(kMagicSize));
+    f.write(header.data(), std::streamsize(header.size()));
+    f.write(reinterpret_cast<const char*>(compressed.data()), std::streamsize(compressed.size()));
+    f.flush();
+    if (!f) {
+      f.close();
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw PartialError("cannot write " + path.string() + ": write failed (disk full?)");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw PartialError("cannot move the finished partial to " + path.string() + ": " +
+                       ec.message());
+  }
+}
+
+Partial read_partial(const fs::path& path) {
+  const std::string src = path.string();
+  std::ifstream f(path, std::ios::binary);
+  if (!f) fail(src, "cannot open for reading");
+
+  char magic[kMagicSize] = {};
+  f.read(magic, std::streamsize(kMagicSize));
+  if (size_t(f.gcount()) != kMagicSize || std::memcmp(magic, kMagic, kMagicSize) != 0)
+    fail(src, "not a vesper partial render (bad magic: expected the first line 'VESPER-PARTIAL')");
+
+  std::string line;
+  if (!std::getline(f, line) || f.eof()) fail(src, "truncated: the header line is incomplete");
+  if (line.size() > kMaxHeaderBytes) fail(src, "header line longer than 16 MiB");
+  json j;
+  try {
+    j = json::parse(line);
+  } catch (const json::exception& e) {
+    fail(src, std::string("header is not valid JSON: ") + e.what());
+  }
+  if (!j.is_object()) fail(src, "header: expected a JSON object");
+
+  const Header h(j, src);
+  h.only_keys(
+      {"format", "width", "height", "channels", "sample_begin", "sample_end", "frame_spp", "seed",
+       "scene_hash", "renderer_version", "nonfinite_samples", "render_seconds", "metadata", "sums"},
+      "header");
+  const std::string format = h.string("format");
+  if (format != kFormat)
+    fail(src, "header: unsupported format '" + format + "' (this build reads " + kFormat + ")");
+
+  Partial p;
+  p.source = src;
+  p.width = int(h.integer("width", 1, kMaxDimension));
+  p.height = int(h.integer("height", 1, kMaxDimension));
+  const json& channels = h.get("channels", json::value_t::array, "an array of channel names");
+  std::set<std::string> seen;
+  for (const json& c : channels) {
+    if (!c.is_string() || c.get<std::string>().empty())
+      fail(src, "header: key 'channels': expected non-empty strings, got " + c.dump());
+    if (!seen.insert(c.get<std::string>()).second)
+      fail(src, "header: key 'channels': duplicate channel '" + c.get<std::string>() + "'");
+    p.channels.push_back(c.get<std::string>());
+  }
+  if (p.channels.empty()) fail(src, "header: key 'channels': no channels");
+  p.sample_begin = int(h.integer("sample_begin", 0, std::numeric_limits<int>::max()));
+  p.sample_end = int(h.integer("sample_end", 0, std::numeric_limits<int>::max()));
+  if (p.sample_end <= p.sample_begin) fail(src, "header: empty sample range " + range_text(p));
+  if (int64_t(p.sample_end) - p.sample_begin > kMaxExactSamples)
+    fail(src, "header: sample range " + range_text(p) + " longer than " +
+                  std::to_string(kMaxExactSamples) + " samples");
+  p.frame_spp = int(h.integer("frame_spp", 0, std::numeric_limits<int>::max()));
+  p.seed = h.unsigned_integer("seed");
+  p.scene_hash = h.string("scene_hash");
+  p.renderer_version = h.string("renderer_version");
+  p.nonfinite_samples = h.unsigned_integer("nonfinite_samples");
+  p.render_seconds = h.get("render_seconds", json::value_t::number_float, "a number").get<double>();
+  const json& meta = h.get("metadata", json::value_t::object, "an object of strings");
+  for (const auto& [k, v] : meta.items()) {
+    if (!v.is_string())
+      fail(src, "header: metadata key '" + k + "': expected a string, got " + v.dump());
+    if (range_keys().count(k))
+      fail(src, "header: metadata key '" + k + "' is a header field, not metadata");
+    p.metadata[k] = v.get<std::string>();
+  }
+
+  const json& sums = h.get("sums", json::value_t::object, "an object");
+  const Header s(sums, src);
+  s.only_keys({"encoding", "compression", "bytes", "compressed_bytes", "crc32"}, "header: sums");
+  if (s.string("encoding") != kEncoding)
+    fail(src, "header: sums: unsupported encoding '" + s.string("encoding") + "' (expected " +
+                  kEncoding + ")");
+  if (s.string("compression") != "zlib")
+    fail(src,
+         "header: sums: unsupported compression '" + s.string("compression") + "' (expected zlib)");
+  const uint64_t bytes = s.unsigned_integer("bytes");
+  const uint64_t compressed_bytes = s.unsigned_integer("compressed_bytes");
+  const uint64_t crc = s.unsigned_integer("crc32");
+  const size_t count = sum_count(p.width, p.height, p.channels.size());
+  if (bytes != uint64_t(count) * 16)
+    fail(src, "size mismatch: header says " + std::to_string(bytes) + " bytes of sums, but " +
+                  std::to_string(p.width) + "x" + std::to_string(p.height) + " pixels x " +
+                  std::to_string(p.channels.size()) +
+                  " channels x 16 bytes = " + std::to_string(count * 16));
+
+  // The rest of the file is the compressed sums, exactly.
+  const std::streampos body = f.tellg();
+  f.seekg(0, std::ios::end);
+  const uint64_t available = uint64_t(f.tellg() - body);
+  if (available < compressed_bytes)
+    fail(src, "truncated: expected " + std::to_string(compressed_bytes) +
+                  " bytes of compressed sums, found " + std::to_string(available));
+  if (available > compressed_bytes)
+    fail(src, "size mismatch: " + std::to_string(available - compressed_bytes) +
+                  " unexpected bytes after the compressed sums");
+  std::vector<unsigned char> compressed(compressed_bytes);
+  f.seekg(body);
+  f.read(reinterpret_cast<char*>(compressed.data()), std::streamsize(compressed.size()));
+  if (uint64_t(f.gcount()) != compressed_bytes) fail(src, "read error in the compressed sums");
+
+  std::vector<unsigned char> raw(bytes);
+  uLongf raw_size = uLongf(bytes);
+  const int zr = uncompress(raw.data(), &raw_size, compressed.data(), uLong(compressed.size()));
+  if (zr != Z_OK || raw_size != bytes)
+    fail(src, "corrupt: the compressed sums do not decompress to " + std::to_string(bytes) +
+                  " bytes (zlib: " + (zr == Z_OK ? "short output" : zError(zr)) + ")");
+  if (crc_of(raw) != crc) fail(src, "corrupt: CRC-32 of the sums does not match the header");
+  p.sums = decode_sums(raw.data(), count);
+  return p;
+}
+
+LayeredImage merge_partials(const std::vector<Partial>& parts) {
+  if (parts.empty()) throw PartialError("merge: no partial renders given");
+  const Partial& ref = parts.front();
+  auto differ = [&](const Partial& p, const std::string& what, const std::string& mine,
+                    const std::string& theirs) {
+    fail(p.source, what + " " + mine + " differs from " + ref.source + "'s " + theirs +
+                       ": not partials of one frame");
+  };
+  for (const Partial& p : parts) {
+    check_sums_size(p);
+    if (p.sample_end <= p.sample_begin) fail(p.source, "empty sample range " + range_text(p));
+    if (&p == &ref) continue;
+    if (p.width != ref.width || p.height != ref.height)
+      differ(p, "image size", std::to_string(p.width) + "x" + std::to_string(p.height),
+             std::to_string(ref.width) + "x" + std::to_string(ref.height));
+    if (p.channels != ref.channels) {
+      auto join = [](const std::vector<std::string>& v) {
+        std::string s;
+        for (const auto& c : v) s += (s.empty() ? "" : ",") + c;
+        return s;
+      };
+      differ(p, "channel list", join(p.channels), join(ref.channels));
+    }
+    if (p.seed != ref.seed) differ(p, "seed", std::to_string(p.seed), std::to_string(ref.seed));
+    if (p.scene_hash != ref.scene_hash)
+      differ(p, "scene hash", p.scene_hash, ref.scene_hash + " (a different scene)");
+    if (p.renderer_version != ref.renderer_version)
+      differ(p, "renderer version", p.renderer_version, ref.renderer_version);
+    if (p.frame_spp != ref.frame_spp)
+      differ(p, "frame spp", std::to_string(p.frame_spp), std::to_string(ref.frame_spp));
+    std::set<std::string> keys;
+    for (const auto& [k, v] : p.metadata) keys.insert(k);
+    for (const auto& [k, v] : ref.metadata) keys.insert(k);
+    for (const std::string& k : keys) {
+      const auto a = p.metadata.find(k), b = ref.metadata.find(k);
+      const std::string va = a == p.metadata.end() ? "(absent)" : "'" + a->second + "'";
+      const std::string vb = b == ref.metadata.end() ? "(absent)" : "'" + b->second + "'";
+      if (va != vb) differ(p, "metadata " + k, va, vb);
+    }
+  }
+
+  // The ranges must tile one contiguous range [begin, end).
+  std::vector<size_t> order(parts.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return parts[a].sample_begin < parts[b].sample_begin;
+  });
+  for (size_t i = 1; i < order.size(); ++i) {
+    const Partial& prev = parts[order[i - 1]];
+    const Partial& next = parts[order[i]];
+    if (next.sample_begin < prev.sample_end)
+      throw PartialError(next.source + ": sample range " + range_text(next) + " overlaps " +
+                         prev.source + "'s " + range_text(prev) +
+                         ": a sample would be counted twice");
+    if (next.sample_begin > prev.sample_end)
+      throw PartialError("samples [" + std::to_string(prev.sample_end) + ", " +
+                         std::to_string(next.sample_begin) + ") are missing between " +
+                         prev.source + " " + range_text(prev) + " and " + next.source + " " +
+                         range_text(next) + ": the ranges must tile one contiguous range");
+  }
+  const int begin = parts[order.front()].sample_begin;
+  const int end = parts[order.back()].sample_end;
+  const int64_t count = int64_t(end) - begin;
+  if (count > kMaxExactSamples)
+    throw PartialError("merge: " + std::to_string(count) + " samples per pixel; at most " +
+                       std::to_string(kMaxExactSamples) + " fit the exact sums");
+
+  std::vector<ExactSum> total(ref.sums.size(), 0);
+  uint64_t nonfinite = 0;
+  double seconds = 0;
+  for (size_t i : order) {  // integer sums: the order does not matter
+    const Partial& p = parts[i];
+    for (size_t k = 0; k < total.size(); ++k) total[k] += p.sums[k];
+    nonfinite += p.nonfinite_samples;
+    seconds += p.render_seconds;
+  }
+
+  LayeredImage img;
+  img.width = ref.width;
+  img.height = ref.height;
+  img.channels = ref.channels;
+  img.pixels.resize(total.size());
+  for (size_t k = 0; k < total.size(); ++k) img.pixels[k] = exact_mean(total[k], count);
+  img.metadata = ref.metadata;
+  img.metadata["vesper:scene_hash"] = ref.scene_hash;
+  img.metadata["vesper:spp"] = std::to_string(count);
+  img.metadata["vesper:sample_begin"] = std::to_string(begin);
+  img.metadata["vesper:sample_end"] = std::to_string(end);
+  img.metadata["vesper:seed"] = std::to_string(ref.seed);
+  img.metadata["vesper:renderer_version"] = ref.renderer_version;
+  img.metadata["vesper:render_seconds"] = std::to_string(seconds);
+  img.metadata["vesper:nonfinite_samples"] = std::to_string(nonfinite);
+  return img;
+}
+
+}  // namespace vesper
