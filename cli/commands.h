@@ -88,4 +88,63 @@ struct HistCommandOptions {
 };
 int run_hist(const HistCommandOptions& options);
 
+// --- The farm (server/README.md; defaults in configs/farm.toml) ---
+
+// Where a farm command finds its settings, server and token.
+struct FarmOptions {
+  std::string config;                 // TOML file; empty = built-in defaults
+  std::optional<std::string> server;  // URL
+  std::optional<std::string> token;
+};
+
+// vesper server: serve the farm API until SIGINT/SIGTERM.
+struct ServerCommandOptions {
+  FarmOptions farm;
+  std::optional<std::string> data_dir, host;
+  std::optional<int> port;
+};
+int run_server(const ServerCommandOptions& options);
+
+// vesper worker: pull and render tasks until SIGINT/SIGTERM.
+struct WorkerCommandOptions {
+  FarmOptions farm;
+  std::optional<std::string> name, cache_dir;
+  std::optional<int> threads;
+  int max_tasks = -1;
+  bool exit_when_idle = false;
+};
+int run_worker(const WorkerCommandOptions& options);
+
+// vesper submit: a scene (with its assets) or a job file (vesper-job/1).
+struct SubmitCommandOptions {
+  FarmOptions farm;
+  std::string input;
+  std::optional<std::string> frames, name;
+  std::optional<int> spp, samples_per_task, priority, max_attempts;
+  bool wait = false, dry_run = false;
+};
+int run_submit(const SubmitCommandOptions& options);
+
+// vesper status|cancel|retry|logs|fetch.
+struct JobCommandOptions {
+  FarmOptions farm;
+  std::optional<long long> job;
+  std::string output_dir;  // fetch
+  bool json = false;       // status: the server's JSON
+};
+int run_status(const JobCommandOptions& options);
+int run_cancel(const JobCommandOptions& options);
+int run_retry(const JobCommandOptions& options);
+int run_logs(const JobCommandOptions& options);
+int run_fetch(const JobCommandOptions& options);
+
+// vesper up: a local server and N workers; submit, wait, fetch, composite.
+struct UpCommandOptions {
+  std::string config;
+  std::optional<int> workers, spp, samples_per_task;
+  std::optional<std::string> scene, frames, comp, data_dir, output_dir;
+  bool no_comp = false;
+};
+int run_up(const UpCommandOptions& options);
+
 }  // namespace vesper::cli

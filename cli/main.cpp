@@ -111,6 +111,89 @@ int main(int argc, char** argv) {
   hi->add_option("--display", hist.display, "OCIO display for EXR inputs (default sRGB)");
   hi->add_option("--view", hist.view, "OCIO view for EXR inputs (default Standard)");
 
+  // --- The farm ---
+  auto add_farm = [](CLI::App* sub, vesper::cli::FarmOptions& f, bool remote) {
+    sub->add_option("--config", f.config,
+                    "Farm settings (TOML; see configs/farm.toml for every key and default)")
+        ->check(CLI::ExistingFile);
+    if (!remote) return;
+    sub->add_option("--server", f.server, "Server URL (default $VESPER_SERVER, else the config's)");
+    sub->add_option("--token", f.token,
+                    "Bearer token (default $VESPER_TOKEN / $VESPER_WORKER_TOKEN, else the local "
+                    "server's tokens.json)");
+  };
+  vesper::cli::ServerCommandOptions server;
+  auto* sv = app.add_subcommand("server", "Run the farm server (HTTP API) until SIGINT/SIGTERM");
+  add_farm(sv, server.farm, false);
+  sv->add_option("--data-dir", server.data_dir, "Data dir (tokens.json, jobs.sqlite, blobs/)");
+  sv->add_option("--host", server.host, "Address to bind (default 127.0.0.1)");
+  sv->add_option("--port", server.port, "Port (default 8765; 0 = any free port)")
+      ->check(CLI::Range(0, 65535));
+
+  vesper::cli::WorkerCommandOptions worker;
+  auto* wk = app.add_subcommand("worker", "Pull tasks from a farm server and render them");
+  add_farm(wk, worker.farm, true);
+  wk->add_option("--name", worker.name, "Name shown by the server (default: hostname)");
+  wk->add_option("--cache-dir", worker.cache_dir, "Blob cache and render temp files");
+  wk->add_option("--threads", worker.threads, "Render threads per task (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  wk->add_option("--max-tasks", worker.max_tasks, "Exit after this many tasks");
+  wk->add_flag("--exit-when-idle", worker.exit_when_idle, "Exit when the server has no work");
+
+  vesper::cli::SubmitCommandOptions submit;
+  auto* sb = app.add_subcommand(
+      "submit", "Submit a scene (with its meshes, images, volumes) or a vesper-job/1 file");
+  add_farm(sb, submit.farm, true);
+  sb->add_option("input", submit.input, "Scene file or job file (JSON)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sb->add_option("--frames", submit.frames, "Frames: 1-100, 1-100x5, 1,5,9 (default 1)");
+  sb->add_option("--name", submit.name, "Job name (default: the scene's folder)");
+  sb->add_option("--spp", submit.spp, "Samples per pixel (default: the scene's)")
+      ->check(CLI::Range(1, 1 << 20));
+  sb->add_option("--split", submit.samples_per_task,
+                 "Samples per task: split each frame over several workers, merged exactly")
+      ->check(CLI::NonNegativeNumber);
+  sb->add_option("--priority", submit.priority, "Higher runs first (default 50)");
+  sb->add_option("--max-attempts", submit.max_attempts, "Attempts per task (default 3)")
+      ->check(CLI::Range(1, 100));
+  sb->add_flag("--wait", submit.wait, "Wait for the job with a progress bar");
+  sb->add_flag("--dry-run", submit.dry_run, "Validate only; create nothing");
+
+  vesper::cli::JobCommandOptions job;
+  auto add_job = [&](const char* name, const char* help, bool required) {
+    auto* sub = app.add_subcommand(name, help);
+    add_farm(sub, job.farm, true);
+    auto* opt = sub->add_option("job", job.job, "Job id");
+    if (required) opt->required();
+    return sub;
+  };
+  auto* st = add_job("status", "Jobs on the farm, or one job's tasks", false);
+  st->add_flag("--json", job.json, "Print the server's JSON");
+  auto* cn = add_job("cancel", "Cancel a job (running tasks stop at their next heartbeat)", true);
+  auto* rt = add_job("retry", "Requeue a job's failed tasks (and clear its blocklist)", true);
+  auto* lg = add_job("logs", "Failure logs of a job's tasks", true);
+  auto* fe = add_job("fetch", "Download a job's finished frames (merged per frame)", true);
+  fe->add_option("-o,--output", job.output_dir, "Directory for <job>.####.exr")->required();
+
+  vesper::cli::UpCommandOptions up;
+  auto* u = app.add_subcommand(
+      "up", "A local farm: server + N workers; submit the demo scene, wait, fetch, composite");
+  u->add_option("--config", up.config, "Farm settings (TOML; configs/farm.toml)")
+      ->check(CLI::ExistingFile);
+  u->add_option("--workers", up.workers, "Worker count (default 2)")->check(CLI::Range(1, 256));
+  u->add_option("--scene", up.scene, "Scene (default scenes/night-room/scene.json)")
+      ->check(CLI::ExistingFile);
+  u->add_option("--frames", up.frames, "Frames (default 1)");
+  u->add_option("--spp", up.spp, "Samples per pixel (default: the scene's)")
+      ->check(CLI::Range(1, 1 << 20));
+  u->add_option("--split", up.samples_per_task, "Samples per task (0 = whole frames)")
+      ->check(CLI::NonNegativeNumber);
+  u->add_option("--comp", up.comp, "Composite recipe (default: comp.json beside the scene)");
+  u->add_flag("--no-comp", up.no_comp, "Do not composite");
+  u->add_option("--data-dir", up.data_dir, "Farm data dir (default out/farm)");
+  u->add_option("-o,--output", up.output_dir, "Frames and composites (default out/farm-frames)");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (r->parsed()) return vesper::cli::run_render(render);
@@ -119,6 +202,15 @@ int main(int argc, char** argv) {
     if (vc->parsed()) return vesper::cli::run_vdb_cloud(vdb_cloud);
     if (vi->parsed()) return vesper::cli::run_vdb_info(vdb_info);
     if (hi->parsed()) return vesper::cli::run_hist(hist);
+    if (sv->parsed()) return vesper::cli::run_server(server);
+    if (wk->parsed()) return vesper::cli::run_worker(worker);
+    if (sb->parsed()) return vesper::cli::run_submit(submit);
+    if (st->parsed()) return vesper::cli::run_status(job);
+    if (cn->parsed()) return vesper::cli::run_cancel(job);
+    if (rt->parsed()) return vesper::cli::run_retry(job);
+    if (lg->parsed()) return vesper::cli::run_logs(job);
+    if (fe->parsed()) return vesper::cli::run_fetch(job);
+    if (u->parsed()) return vesper::cli::run_up(up);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

@@ -1,0 +1,109 @@
+#include "cli/farm_client.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+
+#include "worker/file_hash.h"
+#include "worker/http_client.h"
+
+namespace vesper::cli {
+namespace {
+
+constexpr const char* kApi = "/api/v1";
+
+std::string describe(const std::string& what, const worker_detail::HttpResponse& r) {
+  if (r.status == 0) return what + ": cannot reach the server: " + r.error;
+  std::string msg = what + ": HTTP " + std::to_string(r.status);
+  const auto doc = nlohmann::json::parse(r.body, nullptr, false);
+  if (doc.is_object() && doc.contains("error") && doc["error"].is_string()) {
+    msg += ": " + doc["error"].get<std::string>();
+    if (doc.contains("path") && doc["path"].is_string())
+      msg += " (at " + doc["path"].get<std::string>() + ")";
+  } else if (!r.body.empty()) {
+    msg += ": " + r.body.substr(0, 300);
+  }
+  return msg;
+}
+
+nlohmann::json parse_answer(const std::string& what, const worker_detail::HttpResponse& r) {
+  if (!r.ok()) throw FarmClientError(describe(what, r));
+  if (r.body.empty()) return nlohmann::json::object();
+  auto doc = nlohmann::json::parse(r.body, nullptr, false);
+  if (doc.is_discarded()) throw FarmClientError(what + ": the server's answer is not JSON");
+  return doc;
+}
+
+const char* env(const char* name) {
+  const char* v = std::getenv(name);
+  return v && *v ? v : nullptr;
+}
+
+}  // namespace
+
+std::string resolve_server_url(const FarmSettings& settings,
+                               const std::optional<std::string>& url) {
+  if (url) return *url;
+  if (const char* v = env("VESPER_SERVER")) return v;
+  return settings.worker.server;
+}
+
+std::string resolve_token(const FarmSettings& settings, const std::optional<std::string>& token,
+                          TokenRole role) {
+  if (token) return *token;
+  const char* var = role == TokenRole::Submitter ? "VESPER_TOKEN" : "VESPER_WORKER_TOKEN";
+  if (const char* v = env(var)) return v;
+  const std::filesystem::path file = expand_user(settings.server.data_dir) / "tokens.json";
+  const char* key = role == TokenRole::Submitter ? "submitter" : "worker";
+  std::ifstream in(file);
+  const bool readable = bool(in);
+  const auto doc = nlohmann::json::parse(in, nullptr, false);
+  if (!readable || doc.is_discarded() || !doc.contains(key) || !doc[key].is_string())
+    throw FarmClientError(std::string("no ") + key + " token: pass --token, set " + var +
+                          ", or run on the server's machine (looked for " + file.string() + ": " +
+                          (readable ? "no \"" + std::string(key) + "\" in it" : "not readable") +
+                          ")");
+  return doc[key].get<std::string>();
+}
+
+FarmClient::FarmClient(std::string url, std::string token)
+    : url_(std::move(url)), http_(std::make_unique<worker_detail::HttpClient>(url_, token)) {}
+
+FarmClient::~FarmClient() = default;
+
+nlohmann::json FarmClient::get_json(const std::string& path) {
+  return parse_answer("GET " + path, http_->get(kApi + path));
+}
+
+nlohmann::json FarmClient::post_json(const std::string& path, const nlohmann::json& body) {
+  return parse_answer("POST " + path, http_->post_json(kApi + path, body.dump()));
+}
+
+std::string FarmClient::get_text(const std::string& path) {
+  const auto r = http_->get(kApi + path);
+  if (!r.ok()) throw FarmClientError(describe("GET " + path, r));
+  return r.body;
+}
+
+std::string FarmClient::put_blob(const std::filesystem::path& file) {
+  const auto sha = worker_detail::sha256_file(file);
+  if (!sha) throw FarmClientError(file.string() + ": cannot read");
+  const auto r = http_->put_file(std::string(kApi) + "/blobs/" + *sha, file);
+  if (!r.ok()) throw FarmClientError(describe("upload of " + file.string(), r));
+  return *sha;
+}
+
+void FarmClient::download(const std::string& path, const std::filesystem::path& file) {
+  const std::filesystem::path part = file.string() + ".part";
+  auto r = http_->get_to_file(kApi + path, part);
+  if (!r.ok()) {
+    std::ifstream in(part);  // the error answer went to the file
+    r.body.assign(std::istreambuf_iterator<char>(in), {});
+    std::error_code ec;
+    std::filesystem::remove(part, ec);
+    throw FarmClientError(describe("GET " + path, r));
+  }
+  std::filesystem::rename(part, file);
+}
+
+}  // namespace vesper::cli

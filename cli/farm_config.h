@@ -1,0 +1,64 @@
+#pragma once
+// The farm's settings: built-in defaults (documented key by key in
+// configs/farm.toml) overridden by an optional TOML file, then by flags.
+// toml++ is included by farm_config.cpp only.
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace vesper::cli {
+
+struct FarmServerSettings {
+  std::string host = "127.0.0.1";
+  int port = 8765;
+  std::string data_dir = "~/.local/share/vesper/farm";
+  double lease_seconds = 60;
+  int blocklist_threshold = 3;
+  int max_blob_mib = 64;
+  int threads = 16;
+};
+
+struct FarmWorkerSettings {
+  std::string server = "http://127.0.0.1:8765";
+  std::string cache_dir = "~/.cache/vesper/worker";
+  double heartbeat_seconds = 5;
+  double idle_backoff_min = 0.2, idle_backoff_max = 5.0;
+  int render_threads = 0;
+  double kill_grace_seconds = 2.0;
+};
+
+struct FarmJobSettings {
+  std::string frames = "1";
+  int spp = 0;  // 0 = the scene's render.spp
+  int samples_per_task = 0;
+  int priority = 50;
+  int max_attempts = 3;
+};
+
+struct FarmUpSettings {
+  int workers = 2;
+  std::string data_dir = "out/farm";
+  std::string output_dir = "out/farm-frames";
+};
+
+struct FarmSettings {
+  FarmServerSettings server;
+  FarmWorkerSettings worker;
+  FarmJobSettings job;
+  FarmUpSettings up;
+};
+
+class FarmConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Defaults overridden by `file` (if not empty). Throws FarmConfigError
+// "<file>: <key>: <what was expected>" for syntax errors, unknown keys, wrong
+// types and out-of-range values.
+FarmSettings load_farm_settings(const std::filesystem::path& file);
+
+// `~` or `~/...` -> $HOME/...; other paths unchanged.
+std::filesystem::path expand_user(const std::string& path);
+
+}  // namespace vesper::cli

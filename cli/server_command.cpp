@@ -1,0 +1,57 @@
+// vesper server: the farm API in the foreground until SIGINT/SIGTERM.
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "cli/farm_config.h"
+#include "server/server.h"
+
+namespace vesper::cli {
+
+int run_server(const ServerCommandOptions& o) {
+  FarmSettings settings;
+  try {
+    settings = load_farm_settings(o.farm.config);
+  } catch (const FarmConfigError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  ServerConfig c;
+  c.data_dir = expand_user(o.data_dir.value_or(settings.server.data_dir));
+  c.host = o.host.value_or(settings.server.host);
+  c.port = o.port.value_or(settings.server.port);
+  c.lease_seconds = settings.server.lease_seconds;
+  c.blocklist_threshold = settings.server.blocklist_threshold;
+  c.max_blob_bytes = std::size_t(settings.server.max_blob_mib) << 20;
+  c.threads = settings.server.threads;
+
+  // Block the stop signals before any thread starts (threads inherit the
+  // mask), then wait for one here: no work in a signal handler.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+
+  std::unique_ptr<Server> server;
+  try {
+    server = std::make_unique<Server>(c);
+    server->start();
+  } catch (const std::exception& e) {
+    spdlog::error("server: {}", e.what());
+    return 1;
+  }
+  spdlog::info("tokens for submitters and workers: {}; SIGINT/SIGTERM stops the server",
+               (c.data_dir / "tokens.json").string());
+  std::printf("%s\n", server->url().c_str());
+  std::fflush(stdout);
+  int sig = 0;
+  sigwait(&stop_signals, &sig);
+  spdlog::info("server: {} received, stopping", sig == SIGTERM ? "SIGTERM" : "SIGINT");
+  server->stop();
+  return 0;
+}
+
+}  // namespace vesper::cli

@@ -1,0 +1,187 @@
+// vesper submit: a scene or a job file to the farm.
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/job_watch.h"
+#include "cli/scene_package.h"
+#include "cli/submit.h"
+#include "jobs/frame_range.h"
+#include "renderer/scene/scene_loader.h"
+
+namespace vesper::cli {
+namespace {
+
+std::string default_job_name(const std::filesystem::path& scene) {
+  // scenes/night-room/scene.json -> night-room
+  if (scene.stem() == "scene" && scene.has_parent_path())
+    return std::filesystem::absolute(scene).parent_path().filename().string();
+  return scene.stem().string();
+}
+
+// A temp file for the packed scene, removed when the upload is done.
+struct TempFile {
+  std::filesystem::path path;
+  ~TempFile() {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+  }
+};
+
+}  // namespace
+
+JobRequest job_request_defaults(const FarmSettings& s, const std::filesystem::path& scene) {
+  JobRequest r;
+  r.scene = scene;
+  r.name = default_job_name(scene);
+  r.frames = s.job.frames;
+  r.spp = s.job.spp;
+  r.samples_per_task = s.job.samples_per_task;
+  r.priority = s.job.priority;
+  r.max_attempts = s.job.max_attempts;
+  return r;
+}
+
+JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
+  const std::string label = file.string();
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(label + ": cannot read");
+  const auto doc = nlohmann::json::parse(in, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object())
+    throw std::runtime_error(label + ": expected a JSON object (a vesper-job/1 file)");
+  auto fail = [&](const std::string& key, const std::string& what) -> std::runtime_error {
+    return std::runtime_error(label + ": /" + key + ": " + what);
+  };
+  for (const auto& [key, value] : doc.items()) {
+    auto integer = [&](int lo, int hi) {
+      if (!value.is_number_integer() || value.get<long long>() < lo || value.get<long long>() > hi)
+        throw fail(key, "expected an integer in [" + std::to_string(lo) + ", " +
+                            std::to_string(hi) + "], got " + value.dump());
+      return value.get<int>();
+    };
+    if (key == "format") {
+      if (value != "vesper-job/1") throw fail(key, "expected \"vesper-job/1\"");
+    } else if (key == "scene") {
+      if (!value.is_string()) throw fail(key, "expected the scene file's path (a string)");
+      std::filesystem::path p = value.get<std::string>();
+      r.scene = p.is_relative() ? file.parent_path() / p : p;
+      r.name = default_job_name(r.scene);
+    } else if (key == "frames") {
+      if (value.is_string())
+        r.frames = value.get<std::string>();
+      else if (value.is_number_integer())
+        r.frames = std::to_string(value.get<long long>());
+      else
+        throw fail(key, "expected a frame range string like \"1-100x5\"");
+    } else if (key == "spp") {
+      r.spp = integer(1, 1 << 20);
+    } else if (key == "samples_per_task") {
+      r.samples_per_task = integer(0, 1 << 20);
+    } else if (key == "priority") {
+      r.priority = integer(-1000000, 1000000);
+    } else if (key == "max_attempts") {
+      r.max_attempts = integer(1, 100);
+    } else if (key != "name") {
+      throw fail(key,
+                 "unknown key (expected format, scene, name, frames, spp, "
+                 "samples_per_task, priority, max_attempts)");
+    }
+  }
+  if (doc.value("format", "") != "vesper-job/1")
+    throw std::runtime_error(label + ": /format: expected \"vesper-job/1\"");
+  if (!doc.contains("scene")) throw std::runtime_error(label + ": /scene: missing");
+  if (doc.contains("name")) {
+    if (!doc["name"].is_string() || doc["name"].get<std::string>().empty())
+      throw fail("name", "expected a non-empty string");
+    r.name = doc["name"].get<std::string>();
+  }
+  return r;
+}
+
+Submitted submit_job(FarmClient& client, const JobRequest& r, bool dry_run) {
+  // The scene is checked here, where its author can fix it, before anything is
+  // uploaded; the frame range too (the server checks again).
+  const SceneDescription desc = load_scene(r.scene);
+  parse_frame_range(r.frames);
+  const PackedScene packed = pack_scene(r.scene);
+
+  nlohmann::json assets = nlohmann::json::array();
+  for (const PackedAsset& a : packed.assets) {
+    const std::string sha = client.put_blob(a.local);
+    if (sha != a.sha256)
+      throw FarmClientError(a.local.string() + ": changed while it was being submitted");
+    assets.push_back({{"name", a.name}, {"blob", sha}});
+  }
+  TempFile tmp{std::filesystem::temp_directory_path() /
+               ("vesper-submit-" + std::to_string(::getpid()) + ".json")};
+  {
+    std::ofstream out(tmp.path, std::ios::binary);
+    out << packed.json;
+    if (!out.flush()) throw FarmClientError(tmp.path.string() + ": cannot write");
+  }
+  const std::string scene_blob = client.put_blob(tmp.path);
+
+  nlohmann::json body = {{"name", r.name},
+                         {"scene", scene_blob},
+                         {"frames", r.frames},
+                         {"spp", r.spp > 0 ? r.spp : desc.render.spp},
+                         {"samples_per_task", r.samples_per_task},
+                         {"priority", r.priority},
+                         {"max_attempts", r.max_attempts}};
+  if (!assets.empty()) body["assets"] = assets;
+  const nlohmann::json answer = client.post_json(dry_run ? "/jobs?dry_run=1" : "/jobs", body);
+  Submitted s;
+  s.id = dry_run ? 0 : answer.at("id").get<long long>();
+  s.task_count = answer.at("task_count").get<int>();
+  return s;
+}
+
+int run_submit(const SubmitCommandOptions& o) {
+  try {
+    const FarmSettings settings = load_farm_settings(o.farm.config);
+    JobRequest r = job_request_defaults(settings, o.input);
+    std::ifstream probe(o.input);
+    const auto doc = nlohmann::json::parse(probe, nullptr, false);
+    if (doc.is_object() && doc.value("format", "") == "vesper-job/1") r = read_job_file(o.input, r);
+    if (o.frames) r.frames = *o.frames;
+    if (o.name) r.name = *o.name;
+    if (o.spp) r.spp = *o.spp;
+    if (o.samples_per_task) r.samples_per_task = *o.samples_per_task;
+    if (o.priority) r.priority = *o.priority;
+    if (o.max_attempts) r.max_attempts = *o.max_attempts;
+
+    FarmClient client(resolve_server_url(settings, o.farm.server),
+                      resolve_token(settings, o.farm.token, TokenRole::Submitter));
+    const Submitted s = submit_job(client, r, o.dry_run);
+    if (o.dry_run) {
+      spdlog::info("dry run: '{}' frames {} would make {} tasks; nothing was created", r.name,
+                   r.frames, s.task_count);
+      return 0;
+    }
+    spdlog::info("submitted job {} '{}': frames {}, {} tasks", s.id, r.name, r.frames,
+                 s.task_count);
+    std::printf("%lld\n", s.id);
+    std::fflush(stdout);
+    if (!o.wait) return 0;
+    const nlohmann::json j = wait_for_job(client, s.id);
+    spdlog::info("{}", describe_job(j));
+    return j.at("counts").at("done").get<int>() == j.at("total").get<int>() ? 0 : 3;
+  } catch (const SceneError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const FarmConfigError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const FarmClientError& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+}
+
+}  // namespace vesper::cli

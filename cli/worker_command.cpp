@@ -1,0 +1,69 @@
+// vesper worker: pull tasks from a server and render them until SIGINT/SIGTERM.
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+
+#include "cli/commands.h"
+#include "cli/farm_client.h"
+#include "cli/farm_config.h"
+#include "worker/worker.h"
+
+namespace vesper::cli {
+namespace {
+
+Worker* g_worker = nullptr;
+
+// Async-signal-safe: request_stop only sets an atomic flag. The render in
+// progress is finished and reported; a second signal is not special-cased
+// (SIGKILL is the hard stop, and its lease simply expires).
+extern "C" void on_stop_signal(int) {
+  if (g_worker) g_worker->request_stop();
+}
+
+std::filesystem::path self_executable() {
+  std::error_code ec;
+  auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path("vesper") : p;
+}
+
+}  // namespace
+
+int run_worker(const WorkerCommandOptions& o) {
+  WorkerConfig c;
+  try {
+    const FarmSettings settings = load_farm_settings(o.farm.config);
+    c.server_url = resolve_server_url(settings, o.farm.server);
+    c.token = resolve_token(settings, o.farm.token, TokenRole::Worker);
+    c.cache_dir = expand_user(o.cache_dir.value_or(settings.worker.cache_dir));
+    c.heartbeat_seconds = settings.worker.heartbeat_seconds;
+    c.idle_backoff_min = settings.worker.idle_backoff_min;
+    c.idle_backoff_max = settings.worker.idle_backoff_max;
+    c.render_threads = o.threads.value_or(settings.worker.render_threads);
+    c.kill_grace_seconds = settings.worker.kill_grace_seconds;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  if (o.name) c.name = *o.name;
+  c.vesper_binary = self_executable();
+  c.max_tasks = o.max_tasks;
+  c.exit_when_idle = o.exit_when_idle;
+
+  Worker worker(c);
+  g_worker = &worker;
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  spdlog::info("worker: pulling from {} (cache {})", c.server_url, c.cache_dir.string());
+  const int rc = worker.run();
+  g_worker = nullptr;
+  spdlog::info("worker: {} tasks completed, {} failed, {} dropped", worker.tasks_completed(),
+               worker.tasks_failed(), worker.tasks_dropped());
+  return rc;
+}
+
+}  // namespace vesper::cli
