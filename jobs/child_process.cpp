@@ -1,4 +1,4 @@
-#include "worker/child_process.h"
+#include "jobs/child_process.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -15,7 +15,7 @@
 
 extern char** environ;
 
-namespace vesper::worker_detail {
+namespace vesper {
 namespace {
 using Clock = std::chrono::steady_clock;
 }
@@ -155,4 +155,4 @@ std::string ChildProcess::describe_status() const {
   return "status " + std::to_string(*status_);
 }
 
-}  // namespace vesper::worker_detail
+}  // namespace vesper

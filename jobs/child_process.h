@@ -1,5 +1,6 @@
 #pragma once
-// A child process started with posix_spawn (never a shell): stdin from
+// A child process started with posix_spawn (never a shell; used by the
+// worker for renders and by the server for merges): stdin from
 // /dev/null, stdout discarded, stderr captured into a bounded tail buffer. The
 // child gets its own process group, so a terminal's Ctrl-C/SIGTERM to the
 // worker's group does not kill a render the worker means to finish.
@@ -10,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace vesper::worker_detail {
+namespace vesper {
 
 class ChildProcess {
  public:
@@ -45,4 +46,4 @@ class ChildProcess {
   std::optional<int> status_;
 };
 
-}  // namespace vesper::worker_detail
+}  // namespace vesper

@@ -5,9 +5,28 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace vesper {
+
+// A file the scene references (mesh, OpenVDB grid, environment image), sent
+// as a content-addressed blob. `name` is the relative path the scene's `file`
+// fields use, resolved on the worker against the directory of the scene
+// (e.g. "assets/cube.obj"); `blob` is the SHA-256 of its bytes.
+struct Asset {
+  std::string name;
+  std::string blob;
+  bool operator==(const Asset& o) const { return name == o.name && blob == o.blob; }
+};
+
+// Why `name` is not an acceptable asset name, or empty when it is: a
+// non-empty relative path of at most kMaxAssetNameLength bytes, made of
+// '/'-separated segments that are neither empty, "." nor ".."; no backslash,
+// no NUL, not absolute. Checked by the server on submit and again by the
+// worker before a name becomes a path.
+constexpr size_t kMaxAssetNameLength = 255;
+std::string asset_name_problem(std::string_view name);
 
 struct JobSpec {
   std::string name;
@@ -17,6 +36,7 @@ struct JobSpec {
   int samples_per_task = 0;  // 0 = the whole frame in one task
   int priority = 50;         // higher first
   int max_attempts = 3;
+  std::vector<Asset> assets;  // files the scene references, in submission order
 };
 
 enum class TaskState { Queued, Leased, Done, Failed, Canceled, Paused };
@@ -43,6 +63,18 @@ struct Lease {
   double expiry = 0;     // seconds, the store's clock
   std::string scene;
   int spp = 0;
+  std::vector<Asset> assets;  // the job's assets
+};
+
+// The state of one frame of a job: its tasks and its output (the task's
+// result for a one-task frame, the merged EXR of its sample ranges
+// otherwise), recorded once.
+struct FrameStatus {
+  int frame = 0;
+  int tasks = 0, done = 0, failed = 0, canceled = 0;
+  std::vector<std::string> results;  // results of the done tasks, by sample_begin
+  std::string output;                // the recorded output blob, empty if none yet
+  bool complete() const { return tasks > 0 && done == tasks; }
 };
 
 struct JobSummary {

@@ -65,6 +65,18 @@ CREATE UNIQUE INDEX tasks_by_lease ON tasks(lease_id) WHERE lease_id IS NOT NULL
 CREATE TABLE worker_failures(
   job_id INTEGER NOT NULL, worker TEXT NOT NULL, failures INTEGER NOT NULL, PRIMARY KEY(job_id, worker));
 )sql",
+    // 2: assets (files the scene references) travel as blobs.
+    R"sql(
+CREATE TABLE job_assets(
+  job_id INTEGER NOT NULL REFERENCES jobs(id), ord INTEGER NOT NULL, name TEXT NOT NULL,
+  blob TEXT NOT NULL, PRIMARY KEY(job_id, ord), UNIQUE(job_id, name));
+)sql",
+    // 3: one output per finished frame, recorded once.
+    R"sql(
+CREATE TABLE frame_outputs(
+  job_id INTEGER NOT NULL REFERENCES jobs(id), frame INTEGER NOT NULL, blob TEXT NOT NULL,
+  created REAL NOT NULL, PRIMARY KEY(job_id, frame));
+)sql",
 };
 
 std::string new_lease_id() {
@@ -151,6 +163,63 @@ struct JobStore::Impl {
     if (!s.step()) return std::nullopt;
     return read_task(s);
   }
+
+  std::vector<Asset> assets(int64_t job) const {
+    sql::Stmt s(db, "SELECT name, blob FROM job_assets WHERE job_id = ?1 ORDER BY ord");
+    s.bind(1, job);
+    std::vector<Asset> out;
+    while (s.step()) out.push_back({s.text(0), s.text(1)});
+    return out;
+  }
+
+  // Records a frame's output unless one is recorded already; returns the recorded blob.
+  std::string record_output(int64_t job, int frame, const std::string& blob, double now) {
+    sql::Stmt(db,
+              "INSERT INTO frame_outputs(job_id, frame, blob, created) VALUES(?1, ?2, ?3, ?4) "
+              "ON CONFLICT(job_id, frame) DO NOTHING")
+        .bind(1, job)
+        .bind(2, int64_t(frame))
+        .bind(3, blob)
+        .bind(4, now)
+        .run();
+    sql::Stmt s(db, "SELECT blob FROM frame_outputs WHERE job_id = ?1 AND frame = ?2");
+    s.bind(1, job).bind(2, int64_t(frame));
+    return s.step() ? s.text(0) : std::string();
+  }
+
+  std::vector<FrameStatus> frames(int64_t job, std::optional<int> only) const {
+    sql::Stmt s(db,
+                "SELECT t.frame, t.state, t.result, o.blob FROM tasks t LEFT JOIN frame_outputs o "
+                "ON o.job_id = t.job_id AND o.frame = t.frame WHERE t.job_id = ?1 AND (?2 = 0 OR "
+                "t.frame = ?3) ORDER BY t.frame, t.sample_begin");
+    s.bind(1, job).bind(2, int64_t(only ? 1 : 0)).bind(3, int64_t(only.value_or(0)));
+    std::vector<FrameStatus> out;
+    while (s.step()) {
+      const int frame = int(s.i64(0));
+      if (out.empty() || out.back().frame != frame) {
+        out.emplace_back();
+        out.back().frame = frame;
+        out.back().output = s.text(3);
+      }
+      FrameStatus& f = out.back();
+      ++f.tasks;
+      switch (task_state(s.text(1))) {
+        case TaskState::Done:
+          ++f.done;
+          f.results.push_back(s.text(2));
+          break;
+        case TaskState::Failed:
+          ++f.failed;
+          break;
+        case TaskState::Canceled:
+          ++f.canceled;
+          break;
+        default:
+          break;
+      }
+    }
+    return out;
+  }
 };
 
 JobStore::JobStore(const std::filesystem::path& file, StoreOptions options)
@@ -182,6 +251,9 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   if (spec.spp <= 0) throw StoreError("job '" + spec.name + "': spp must be positive");
   if (spec.max_attempts <= 0)
     throw StoreError("job '" + spec.name + "': max_attempts must be positive");
+  for (const Asset& a : spec.assets)
+    if (const std::string why = asset_name_problem(a.name); !why.empty())
+      throw StoreError("job '" + spec.name + "': asset name '" + a.name + "' " + why);
   auto& db = impl_->db;
   sql::Transaction tx(db);
   sql::Stmt(db,
@@ -195,6 +267,13 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
       .bind(6, now)
       .run();
   const int64_t job = sqlite3_last_insert_rowid(db.get());
+  for (size_t i = 0; i < spec.assets.size(); ++i)
+    sql::Stmt(db, "INSERT INTO job_assets(job_id, ord, name, blob) VALUES(?1, ?2, ?3, ?4)")
+        .bind(1, job)
+        .bind(2, int64_t(i))
+        .bind(3, spec.assets[i].name)
+        .bind(4, spec.assets[i].blob)
+        .run();
   const int split = spec.samples_per_task > 0 ? spec.samples_per_task : spec.spp;
   for (int frame : spec.frames)
     for (int b = 0; b < spec.spp; b += split) {
@@ -241,6 +320,7 @@ std::optional<Lease> JobStore::lease(const std::string& worker, double now) {
       .bind(4, lease.expiry)
       .run();
   lease.task = *impl_->leased_task(lease.lease_id);
+  lease.assets = impl_->assets(lease.task.job_id);
   tx.commit();
   return lease;
 }
@@ -264,7 +344,7 @@ HeartbeatAnswer JobStore::heartbeat(const std::string& lease_id, double now) {
   return HeartbeatAnswer::KeepRunning;
 }
 
-bool JobStore::complete(const std::string& lease_id, const std::string& result, double) {
+bool JobStore::complete(const std::string& lease_id, const std::string& result, double now) {
   auto& db = impl_->db;
   sql::Transaction tx(db);
   const auto task = impl_->leased_task(lease_id);
@@ -275,6 +355,10 @@ bool JobStore::complete(const std::string& lease_id, const std::string& result, 
       .bind(1, task->id)
       .bind(2, result)
       .run();
+  // A frame of one task: its result is the frame's output, recorded with the completion.
+  const auto frame = impl_->frames(task->job_id, task->frame);
+  if (frame.size() == 1 && frame[0].tasks == 1 && frame[0].complete())
+    impl_->record_output(task->job_id, task->frame, result, now);
   tx.commit();
   return true;
 }
@@ -398,6 +482,40 @@ std::vector<Task> JobStore::tasks(int64_t job) const {
   s.bind(1, job);
   std::vector<Task> out;
   while (s.step()) out.push_back(read_task(s));
+  return out;
+}
+
+std::vector<Asset> JobStore::assets(int64_t job) const { return impl_->assets(job); }
+
+std::vector<FrameStatus> JobStore::frames(int64_t job) const {
+  return impl_->frames(job, std::nullopt);
+}
+
+std::optional<FrameStatus> JobStore::frame(int64_t job, int frame) const {
+  auto f = impl_->frames(job, frame);
+  if (f.empty()) return std::nullopt;
+  return f[0];
+}
+
+std::string JobStore::record_frame_output(int64_t job, int frame, const std::string& blob,
+                                          double now) {
+  sql::Transaction tx(impl_->db);
+  const auto f = impl_->frames(job, frame);
+  if (f.empty() || !f[0].complete())
+    throw StoreError("job " + std::to_string(job) + " frame " + std::to_string(frame) +
+                     " is not finished; its output cannot be recorded");
+  const std::string recorded = impl_->record_output(job, frame, blob, now);
+  tx.commit();
+  return recorded;
+}
+
+std::vector<std::pair<int64_t, int>> JobStore::frames_awaiting_merge() const {
+  sql::Stmt s(impl_->db,
+              "SELECT t.job_id, t.frame FROM tasks t LEFT JOIN frame_outputs o ON o.job_id = "
+              "t.job_id AND o.frame = t.frame WHERE o.blob IS NULL GROUP BY t.job_id, t.frame "
+              "HAVING COUNT(*) > 1 AND SUM(t.state <> 'done') = 0 ORDER BY t.job_id, t.frame");
+  std::vector<std::pair<int64_t, int>> out;
+  while (s.step()) out.emplace_back(s.i64(0), int(s.i64(1)));
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "jobs/job.h"
@@ -60,6 +61,19 @@ class JobStore {
   std::vector<JobSummary> jobs() const;
   std::vector<Task> tasks(int64_t job) const;
   bool blocked(int64_t job, const std::string& worker) const;
+  std::vector<Asset> assets(int64_t job) const;
+
+  // Frames of a job (ascending), with their tasks' results and recorded output.
+  std::vector<FrameStatus> frames(int64_t job) const;
+  std::optional<FrameStatus> frame(int64_t job, int frame) const;
+  // Records `blob` as the output of a finished frame, once: when an output is
+  // recorded already (another merge won the race) it is kept. Returns the
+  // recorded blob. A frame of one task gets its output from complete(), in
+  // the same transaction. Throws StoreError if the frame is not finished.
+  std::string record_frame_output(int64_t job, int frame, const std::string& blob, double now);
+  // (job, frame) of every finished frame of several tasks that has no output
+  // recorded yet: the frames that wait for a merge.
+  std::vector<std::pair<int64_t, int>> frames_awaiting_merge() const;
 
   struct Impl;
 

@@ -13,12 +13,15 @@
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
 #include <thread>
 
 #include "jobs/job_store.h"
 #include "server/api_error.h"
 #include "server/blob_store.h"
 #include "server/json_body.h"
+#include "server/merge.h"
 #include "server/metrics.h"
 #include "server/sha256.h"
 #include "server/tokens.h"
@@ -86,6 +89,36 @@ int64_t parse_id(const std::string& s) {
   throw ApiError(404, "no such id '" + s + "'");
 }
 
+int parse_frame(const std::string& s) {
+  try {
+    size_t used = 0;
+    const long long v = std::stoll(s, &used);
+    if (used == s.size() && v >= INT32_MIN && v <= INT32_MAX) return int(v);
+  } catch (const std::exception&) {
+  }
+  throw ApiError(404, "no such frame '" + s.substr(0, 80) + "'");
+}
+
+// Streams a file as the response body.
+void send_file(httplib::Response& res, const fs::path& path, uintmax_t size,
+               const char* content_type) {
+  res.status = 200;
+  res.set_content_provider(size_t(size), content_type,
+                           [path, in = std::shared_ptr<std::ifstream>()](
+                               size_t offset, size_t length, httplib::DataSink& sink) mutable {
+                             if (!in) {
+                               in = std::make_shared<std::ifstream>(path, std::ios::binary);
+                               if (!*in) return false;
+                             }
+                             std::string buf(std::min<size_t>(length, 1 << 20), '\0');
+                             in->seekg(std::streamoff(offset));
+                             in->read(buf.data(), std::streamsize(buf.size()));
+                             const auto n = size_t(in->gcount());
+                             if (n == 0) return false;
+                             return sink.write(buf.data(), n);
+                           });
+}
+
 std::string bearer(const httplib::Request& req) {
   const std::string h = req.get_header_value("Authorization");
   constexpr std::string_view prefix = "Bearer ";
@@ -130,6 +163,24 @@ struct Server::Impl {
   std::mutex live_mutex;
   std::map<std::string, LiveLease> live;  // by lease id
 
+  // Merged frame outputs. A frame is merged by one thread at a time
+  // (`merging`); the store records the output once. A failed merge is kept
+  // here (in memory) and retried on request after merge_retry_seconds.
+  fs::path merger;  // the vesper binary; empty: merging unavailable
+  std::string merger_problem;
+  std::atomic<bool> stopping{false};
+  std::mutex merge_mutex;
+  std::condition_variable merge_cv;
+  bool merge_scan = true;  // the background merger should look for frames to merge
+  std::set<std::pair<int64_t, int>> merging;
+  struct MergeFailure {
+    std::string error;
+    std::chrono::steady_clock::time_point when;
+  };
+  std::map<std::pair<int64_t, int>, MergeFailure> merge_failures;
+  std::thread merge_thread;
+  std::atomic<uint64_t> merge_counter{0};
+
   explicit Impl(ServerConfig c)
       : config(prepare(std::move(c))),
         tokens(load_or_create_tokens(config.data_dir / "tokens.json")),
@@ -137,7 +188,15 @@ struct Server::Impl {
         workers(config.data_dir / "workers.json"),
         store(std::make_unique<JobStore>(
             config.data_dir / "jobs.sqlite",
-            StoreOptions{config.lease_seconds, config.blocklist_threshold})) {}
+            StoreOptions{config.lease_seconds, config.blocklist_threshold})) {
+    merger = find_vesper_binary(config.vesper_binary, merger_problem);
+    if (merger.empty())
+      spdlog::warn("merged frames of several tasks unavailable: {}", merger_problem);
+    // Merges killed with a previous server left only temp files: nothing was recorded.
+    std::error_code ec;
+    fs::remove_all(config.data_dir / "merge-tmp", ec);
+    fs::create_directories(config.data_dir / "merge-tmp", ec);
+  }
 
   static ServerConfig prepare(ServerConfig c) {
     if (c.data_dir.empty()) throw std::invalid_argument("server: data_dir is empty");
@@ -240,6 +299,12 @@ struct Server::Impl {
           400,
           "no blob " + spec.scene + ": upload the scene first (PUT " + kApi + "/blobs/{sha256})",
           "/scene");
+    for (size_t i = 0; i < spec.assets.size(); ++i)
+      if (!blobs.exists(spec.assets[i].blob))
+        throw ApiError(400,
+                       "no blob " + spec.assets[i].blob + " for asset '" + spec.assets[i].name +
+                           "': upload it first (PUT " + kApi + "/blobs/{sha256})",
+                       "/assets/" + std::to_string(i) + "/blob");
     const int64_t n = task_count(spec);
     const std::string dry = req.get_param_value("dry_run");
     if (dry == "1" || dry == "true") {
@@ -380,6 +445,8 @@ struct Server::Impl {
       return;
     }
     ++leases_granted;
+    json assets = json::array();
+    for (const Asset& a : l->assets) assets.push_back({{"name", a.name}, {"blob", a.blob}});
     {
       std::lock_guard lock(live_mutex);
       live[l->lease_id] = LiveLease{l->task.id, worker, l->expiry, 0};
@@ -390,6 +457,7 @@ struct Server::Impl {
                {"lease_seconds", config.lease_seconds},
                {"scene", l->scene},
                {"spp", l->spp},
+               {"assets", std::move(assets)},
                {"task",
                 {{"id", l->task.id},
                  {"job_id", l->task.job_id},
@@ -460,6 +528,7 @@ struct Server::Impl {
     }
     note_lease(lease_id, t, true);
     if (!ok) stale(lease_id);
+    wake_merger();  // the task may have finished a frame of several tasks
     send_json(res, 200, {{"ok", true}});
   }
 
@@ -491,22 +560,237 @@ struct Server::Impl {
     const auto file = blobs.file(hash);
     const auto size = blobs.size(hash);
     if (!file || !size) throw ApiError(404, "no blob " + hash);
-    res.status = 200;
-    const fs::path path = *file;
-    res.set_content_provider(size_t(*size), "application/octet-stream",
-                             [path, in = std::shared_ptr<std::ifstream>()](
-                                 size_t offset, size_t length, httplib::DataSink& sink) mutable {
-                               if (!in) {
-                                 in = std::make_shared<std::ifstream>(path, std::ios::binary);
-                                 if (!*in) return false;
-                               }
-                               std::string buf(std::min<size_t>(length, 1 << 20), '\0');
-                               in->seekg(std::streamoff(offset));
-                               in->read(buf.data(), std::streamsize(buf.size()));
-                               const auto n = size_t(in->gcount());
-                               if (n == 0) return false;
-                               return sink.write(buf.data(), n);
-                             });
+    send_file(res, *file, *size, "application/octet-stream");
+  }
+
+  // ---- merged frames ----
+
+  void wake_merger() {
+    {
+      std::lock_guard lock(merge_mutex);
+      merge_scan = true;
+    }
+    merge_cv.notify_all();
+  }
+
+  enum class Output { Ready, Pending, TasksFailed, Unavailable, MergeFailed, Stopping };
+  struct FrameOutput {
+    Output state = Output::Pending;
+    std::string blob;     // Ready
+    std::string message;  // otherwise
+  };
+
+  static std::string frame_name(int64_t job, int frame) {
+    return "frame " + std::to_string(frame) + " of job " + std::to_string(job);
+  }
+
+  // The output of a frame, merging it first if it needs a merge and none
+  // ran yet (or, with `retry`, the last one failed more than
+  // merge_retry_seconds ago). Waits for a merge of the same frame that is
+  // in flight. nullopt: the job has no such frame.
+  std::optional<FrameOutput> frame_output(int64_t job, int frame, bool retry) {
+    const auto key = std::make_pair(job, frame);
+    for (;;) {
+      std::optional<FrameStatus> f;
+      {
+        std::lock_guard lock(store_mutex);
+        f = store->frame(job, frame);
+      }
+      if (!f) return std::nullopt;
+      if (!f->output.empty()) return FrameOutput{Output::Ready, f->output, {}};
+      if (f->failed + f->canceled > 0)
+        return FrameOutput{Output::TasksFailed,
+                           {},
+                           frame_name(job, frame) +
+                               " will not finish: " + std::to_string(f->failed) +
+                               " task(s) failed and " + std::to_string(f->canceled) +
+                               " canceled (POST .../retry-failed requeues failed tasks)"};
+      if (!f->complete())
+        return FrameOutput{Output::Pending,
+                           {},
+                           frame_name(job, frame) +
+                               " is not finished yet: " + std::to_string(f->done) + " of " +
+                               std::to_string(f->tasks) + " tasks done"};
+      if (f->tasks == 1) {  // completed before outputs were recorded (an older store)
+        std::lock_guard lock(store_mutex);
+        return FrameOutput{
+            Output::Ready, store->record_frame_output(job, frame, f->results[0], now()), {}};
+      }
+      if (merger.empty())
+        return FrameOutput{Output::Unavailable, {}, "merging is unavailable: " + merger_problem};
+      {
+        std::unique_lock lock(merge_mutex);
+        if (merging.count(key)) {  // another thread merges it: wait, then look again
+          merge_cv.wait(lock, [&] { return !merging.count(key) || stopping.load(); });
+          if (stopping.load()) return FrameOutput{Output::Stopping, {}, "the server is stopping"};
+          if (auto it = merge_failures.find(key); it != merge_failures.end())
+            return FrameOutput{Output::MergeFailed, {}, it->second.error};
+          continue;
+        }
+        if (auto it = merge_failures.find(key); it != merge_failures.end()) {
+          const double age =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - it->second.when)
+                  .count();
+          if (!retry || age < config.merge_retry_seconds)
+            return FrameOutput{Output::MergeFailed, {}, it->second.error};
+        }
+        merging.insert(key);
+      }
+      FrameOutput out;
+      try {
+        out = merge(job, frame, f->results);
+      } catch (const std::exception& e) {
+        out = FrameOutput{Output::MergeFailed, {}, std::string("merge failed: ") + e.what()};
+      }
+      {
+        std::lock_guard lock(merge_mutex);
+        merging.erase(key);
+        if (out.state == Output::MergeFailed)
+          merge_failures[key] = MergeFailure{out.message, std::chrono::steady_clock::now()};
+        else
+          merge_failures.erase(key);
+      }
+      merge_cv.notify_all();
+      return out;
+    }
+  }
+
+  // Runs `vesper merge` over the frame's results, stores the EXR as a blob
+  // and records it. Killed at any point before the record, it leaves nothing
+  // recorded (a stray temp file in merge-tmp/ is removed at the next start).
+  FrameOutput merge(int64_t job, int frame, const std::vector<std::string>& results) {
+    std::vector<fs::path> inputs;
+    for (const std::string& r : results) {
+      auto file = blobs.file(r);
+      if (!file) return {Output::MergeFailed, {}, "the result blob " + r + " of a task is missing"};
+      inputs.push_back(*file);
+    }
+    const fs::path out = config.data_dir / "merge-tmp" /
+                         (std::to_string(job) + "-" + std::to_string(frame) + "-" +
+                          std::to_string(++merge_counter) + "-" + random_hex(8) + ".exr");
+    spdlog::info("{}: merging {} sample ranges", frame_name(job, frame), inputs.size());
+    const auto started = std::chrono::steady_clock::now();
+    const MergeRun run = run_vesper_merge(merger, inputs, out, stopping);
+    if (run.aborted) return {Output::Stopping, {}, run.error};
+    if (!run.ok) {
+      spdlog::error("{}: {}", frame_name(job, frame), run.error);
+      return {Output::MergeFailed, {}, run.error};
+    }
+    std::string bytes;
+    {
+      std::ifstream in(out, std::ios::binary);
+      std::ostringstream ss;
+      ss << in.rdbuf();
+      bytes = ss.str();
+    }
+    std::error_code ec;
+    fs::remove(out, ec);
+    const std::string hash = sha256_hex(bytes);
+    blobs.put(hash, bytes);
+    std::string recorded;
+    {
+      std::lock_guard lock(store_mutex);
+      recorded = store->record_frame_output(job, frame, hash, now());
+    }
+    spdlog::info("{}: merged into {} in {:.2f} s", frame_name(job, frame), recorded,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+    return {Output::Ready, recorded, {}};
+  }
+
+  // Background: merges every finished frame that waits for a merge, after
+  // each completion (and once at start, for merges a restart interrupted).
+  // Failed merges are not retried here; a request retries them later.
+  void merger_loop() {
+    for (;;) {
+      {
+        std::unique_lock lock(merge_mutex);
+        merge_cv.wait(lock, [&] { return merge_scan || stopping.load(); });
+        if (stopping.load()) return;
+        merge_scan = false;
+      }
+      if (merger.empty()) continue;
+      std::vector<std::pair<int64_t, int>> todo;
+      try {
+        std::lock_guard lock(store_mutex);
+        todo = store->frames_awaiting_merge();
+      } catch (const std::exception& e) {
+        spdlog::error("merger: {}", e.what());
+      }
+      for (const auto& [job, frame] : todo) {
+        if (stopping.load()) return;
+        try {
+          frame_output(job, frame, /*retry=*/false);
+        } catch (const std::exception& e) {
+          spdlog::error("merger: {}: {}", frame_name(job, frame), e.what());
+        }
+      }
+    }
+  }
+
+  void list_frames(const httplib::Request& req, httplib::Response& res) {
+    const int64_t id = parse_id(req.matches[1]);
+    std::vector<FrameStatus> frames;
+    {
+      std::lock_guard lock(store_mutex);
+      job_or_404(id);
+      frames = store->frames(id);
+    }
+    std::map<std::pair<int64_t, int>, std::string> failures;
+    {
+      std::lock_guard lock(merge_mutex);
+      for (const auto& [key, f] : merge_failures)
+        if (key.first == id) failures[key] = f.error;
+    }
+    json arr = json::array();
+    for (const FrameStatus& f : frames) {
+      json fj{{"frame", f.frame}, {"tasks", f.tasks}, {"done", f.done}};
+      if (!f.output.empty() || (f.complete() && f.tasks == 1)) {
+        fj["state"] = "ready";
+        fj["blob"] = f.output.empty() ? f.results[0] : f.output;
+      } else if (f.failed + f.canceled > 0) {
+        fj["state"] = "failed";
+        fj["error"] = std::to_string(f.failed) + " task(s) failed, " + std::to_string(f.canceled) +
+                      " canceled";
+      } else if (auto it = failures.find({id, f.frame}); f.complete() && it != failures.end()) {
+        fj["state"] = "failed";
+        fj["error"] = it->second;
+      } else {
+        fj["state"] = "pending";
+      }
+      arr.push_back(std::move(fj));
+    }
+    send_json(res, 200, {{"frames", arr}});
+  }
+
+  void get_frame(const httplib::Request& req, httplib::Response& res) {
+    const int64_t id = parse_id(req.matches[1]);
+    const int frame = parse_frame(req.matches[2]);
+    {
+      std::lock_guard lock(store_mutex);
+      job_or_404(id);
+    }
+    const auto out = frame_output(id, frame, /*retry=*/true);
+    if (!out)
+      throw ApiError(404, "job " + std::to_string(id) + " has no frame " + req.matches[2].str());
+    switch (out->state) {
+      case Output::Ready:
+        break;
+      case Output::Pending:
+      case Output::TasksFailed:
+        throw ApiError(409, out->message);
+      case Output::Unavailable:
+      case Output::Stopping:
+        throw ApiError(503, out->message);
+      case Output::MergeFailed:
+        throw ApiError(500, out->message);
+    }
+    const auto file = blobs.file(out->blob);
+    const auto size = blobs.size(out->blob);
+    if (!file || !size)
+      throw ApiError(500, "the output blob " + out->blob + " of " + frame_name(id, frame) +
+                              " is missing from the blob store");
+    res.set_header("X-Vesper-Blob", out->blob);
+    send_file(res, *file, *size, "image/x-exr");
   }
 
   void metrics(const httplib::Request&, httplib::Response& res) {
@@ -559,6 +843,8 @@ struct Server::Impl {
     post(api + R"(/jobs/([^/]+)/(cancel|pause|resume|retry-failed))", Role::Submitter,
          bind(&Impl::job_action));
     get(api + R"(/jobs/([^/]+)/tasks/([^/]+)/log)", Role::Submitter, bind(&Impl::task_log));
+    get(api + R"(/jobs/([^/]+)/frames)", Role::Submitter, bind(&Impl::list_frames));
+    get(api + R"(/jobs/([^/]+)/frames/([^/]+))", Role::Submitter, bind(&Impl::get_frame));
 
     post(api + "/workers/register", Role::Worker, bind(&Impl::register_worker));
     get(api + "/workers", Role::Either, bind(&Impl::list_workers));
@@ -650,6 +936,7 @@ int Server::start() {
   for (int i = 0; i < 5000 && !s.http.is_running(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   s.reaper_thread = std::thread([&s] { s.reaper(); });
+  s.merge_thread = std::thread([&s] { s.merger_loop(); });
   spdlog::info("vesper server on http://{}:{} (data {})", s.config.host, s.bound_port,
                s.config.data_dir.string());
   return s.bound_port;
@@ -666,9 +953,15 @@ void Server::stop() {
     s.stopped = true;
   }
   s.stop_cv.notify_all();
+  {
+    std::lock_guard lock(s.merge_mutex);
+    s.stopping = true;
+  }
+  s.merge_cv.notify_all();
   s.http.stop();
   if (s.http_thread.joinable()) s.http_thread.join();
   if (s.reaper_thread.joinable()) s.reaper_thread.join();
+  if (s.merge_thread.joinable()) s.merge_thread.join();
   try {
     s.workers.save();
   } catch (const std::exception& e) {

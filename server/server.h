@@ -4,7 +4,7 @@
 // workers, /metrics and /healthz. See server/README.md for the API.
 //
 // Data dir layout: tokens.json (0600), jobs.sqlite (+WAL), workers.json,
-// blobs/ab/cdef... (+ blobs/tmp/).
+// blobs/ab/cdef... (+ blobs/tmp/), merge-tmp/ (merges in flight).
 //
 // This header does not include cpp-httplib; server.cpp is the only file that
 // does.
@@ -33,6 +33,13 @@ struct ServerConfig {
   // How often expired leases are requeued in the background (seconds);
   // 0 = lease_seconds / 4, at most 5 s. Leasing also requeues them.
   double reaper_interval = 0;
+  // The `vesper` executable that merges a frame's sample-range results
+  // (`vesper merge`). Empty: `vesper` next to this process's executable
+  // (/proc/self/exe). If there is none, merged frames of several tasks are
+  // unavailable (503); frames of one task still work.
+  std::filesystem::path vesper_binary;
+  // A failed merge is retried on request only after this many seconds.
+  double merge_retry_seconds = 60;
 };
 
 class Server {

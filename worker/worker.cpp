@@ -12,7 +12,7 @@
 #include <random>
 #include <thread>
 
-#include "worker/child_process.h"
+#include "jobs/child_process.h"
 #include "worker/file_hash.h"
 #include "worker/http_client.h"
 
@@ -23,7 +23,7 @@ namespace vesper {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using worker_detail::ChildProcess;
+using vesper::ChildProcess;
 using worker_detail::HttpClient;
 using worker_detail::HttpResponse;
 

@@ -28,7 +28,7 @@ class JobStoreTest : public ::testing::Test {
   fs::path db() const { return dir_ / "jobs.sqlite"; }
   static JobSpec spec(std::vector<int> frames, int spp = 8, int split = 0, int priority = 50,
                       int attempts = 3) {
-    return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts};
+    return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts, {}};
   }
   fs::path dir_;
 };
@@ -44,7 +44,7 @@ TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {
   EXPECT_EQ(tasks[2].sample_end, 10);  // the last range is short
   EXPECT_EQ(tasks[3].frame, 2);
   EXPECT_EQ(s.job(j)->queued, 6);
-  EXPECT_EQ(s.schema_version(), 1);
+  EXPECT_EQ(s.schema_version(), 3);
 }
 
 TEST_F(JobStoreTest, LeasesByPriorityThenAgeThenFrame) {
@@ -188,6 +188,117 @@ TEST_F(JobStoreTest, ANewerSchemaIsRefused) {
     raw.exec("UPDATE schema_version SET version = 99");
   }
   EXPECT_THROW(JobStore s(db()), StoreError);
+}
+
+TEST_F(JobStoreTest, AssetsAreStoredInOrderAndCarriedByTheLease) {
+  JobStore s(db());
+  JobSpec sp = spec({1, 2});
+  sp.assets = {{"assets/cube.obj", std::string(64, 'a')}, {"env.exr", std::string(64, 'b')}};
+  const int64_t j = s.submit(sp, 0);
+  EXPECT_EQ(s.assets(j), sp.assets);
+  const auto l = s.lease("w", 0);
+  ASSERT_TRUE(l);
+  EXPECT_EQ(l->assets, sp.assets);
+  // A job without assets leases none.
+  const int64_t k = s.submit(spec({1}, 8, 0, 99), 0);
+  const auto m = s.lease("w", 0);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->task.job_id, k);
+  EXPECT_TRUE(m->assets.empty());
+  // The store refuses names that could escape the scene directory.
+  for (const char* bad : {"../x", "/etc/passwd", "a/../../b", "a//b", "", "a\\b", "./a", "a/"}) {
+    JobSpec b = spec({1});
+    b.assets = {{bad, std::string(64, 'c')}};
+    EXPECT_THROW(s.submit(b, 0), StoreError) << bad;
+  }
+}
+
+TEST_F(JobStoreTest, AssetNames) {
+  EXPECT_EQ(asset_name_problem("assets/cube.obj"), "");
+  EXPECT_EQ(asset_name_problem("a.b/..c/d..e"), "");
+  EXPECT_EQ(asset_name_problem(std::string(255, 'x')), "");
+  for (const std::string& bad :
+       std::vector<std::string>{"", "../x", "/etc/passwd", "a/../../b", "a//b", "a\\b", "./a", "a/",
+                                ".", "..", std::string(256, 'x'), std::string("a\0b", 3)})
+    EXPECT_NE(asset_name_problem(bad), "") << bad;
+}
+
+TEST_F(JobStoreTest, AOneTaskFrameRecordsItsOutputOnCompletion) {
+  JobStore s(db());
+  const int64_t j = s.submit(spec({1, 2}, 8, 4), 0);  // two tasks per frame
+  const int64_t k = s.submit(spec({7}), 0);           // one task
+  EXPECT_EQ(s.frames(j).size(), 2u);
+  while (auto l = s.lease("w", 1)) s.complete(l->lease_id, "r" + std::to_string(l->task.id), 1);
+  const auto f7 = s.frame(k, 7);
+  ASSERT_TRUE(f7);
+  EXPECT_TRUE(f7->complete());
+  EXPECT_EQ(f7->output, f7->results.at(0));  // recorded with the completion
+  const auto f1 = s.frame(j, 1);
+  ASSERT_TRUE(f1);
+  EXPECT_TRUE(f1->complete());
+  EXPECT_EQ(f1->tasks, 2);
+  EXPECT_EQ(f1->results.size(), 2u);
+  EXPECT_EQ(f1->output, "");  // a merge is needed
+  EXPECT_EQ(s.frames_awaiting_merge(), (std::vector<std::pair<int64_t, int>>{{j, 1}, {j, 2}}));
+  EXPECT_FALSE(s.frame(j, 3));
+  // Recorded once: a second (racing) merge keeps the first output.
+  EXPECT_EQ(s.record_frame_output(j, 1, "merged-a", 2), "merged-a");
+  EXPECT_EQ(s.record_frame_output(j, 1, "merged-b", 3), "merged-a");
+  EXPECT_EQ(s.frame(j, 1)->output, "merged-a");
+  EXPECT_EQ(s.frames(j).at(1).output, "");
+  EXPECT_EQ(s.frames_awaiting_merge(), (std::vector<std::pair<int64_t, int>>{{j, 2}}));
+}
+
+TEST_F(JobStoreTest, AnUnfinishedFrameHasNoOutput) {
+  JobStore s(db());
+  const int64_t j = s.submit(spec({1}, 8, 4), 0);
+  const auto l = s.lease("w", 0);
+  s.complete(l->lease_id, "r", 1);
+  EXPECT_FALSE(s.frame(j, 1)->complete());
+  EXPECT_THROW(s.record_frame_output(j, 1, "m", 2), StoreError);
+  EXPECT_TRUE(s.frames_awaiting_merge().empty());
+}
+
+TEST_F(JobStoreTest, AVersion1DatabaseMigrates) {
+  // The schema as migration 1 created it, with a job in it.
+  {
+    sql::Db raw(db().string());
+    raw.exec(R"sql(
+CREATE TABLE schema_version(version INTEGER NOT NULL);
+INSERT INTO schema_version(version) VALUES(1);
+CREATE TABLE jobs(
+  id INTEGER PRIMARY KEY, name TEXT NOT NULL, scene TEXT NOT NULL, spp INTEGER NOT NULL,
+  priority INTEGER NOT NULL, max_attempts INTEGER NOT NULL, state TEXT NOT NULL, created REAL NOT NULL);
+CREATE TABLE tasks(
+  id INTEGER PRIMARY KEY, job_id INTEGER NOT NULL REFERENCES jobs(id), frame INTEGER NOT NULL,
+  sample_begin INTEGER NOT NULL, sample_end INTEGER NOT NULL, state TEXT NOT NULL,
+  attempts INTEGER NOT NULL DEFAULT 0, lease_id TEXT, worker TEXT NOT NULL DEFAULT '',
+  lease_expiry REAL, result TEXT NOT NULL DEFAULT '', log TEXT NOT NULL DEFAULT '');
+CREATE INDEX tasks_by_state ON tasks(state, job_id);
+CREATE UNIQUE INDEX tasks_by_lease ON tasks(lease_id) WHERE lease_id IS NOT NULL;
+CREATE TABLE worker_failures(
+  job_id INTEGER NOT NULL, worker TEXT NOT NULL, failures INTEGER NOT NULL, PRIMARY KEY(job_id, worker));
+INSERT INTO jobs VALUES(1, 'old', 'scene-sha', 8, 50, 3, 'active', 0);
+INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state, result) VALUES(1, 1, 0, 8, 'done', 'r1');
+INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0, 8, 'queued');
+)sql");
+  }
+  JobStore s(db());
+  EXPECT_EQ(s.schema_version(), 3);
+  EXPECT_EQ(s.job(1)->name, "old");
+  EXPECT_TRUE(s.assets(1).empty());
+  EXPECT_TRUE(s.frame(1, 1)->complete());
+  EXPECT_EQ(s.frame(1, 1)->output, "");  // completed before outputs were recorded
+  const auto l = s.lease("w", 1);
+  ASSERT_TRUE(l);
+  EXPECT_EQ(l->task.frame, 2);
+  EXPECT_TRUE(l->assets.empty());
+  EXPECT_TRUE(s.complete(l->lease_id, "r2", 2));
+  EXPECT_EQ(s.frame(1, 2)->output, "r2");
+  JobSpec sp = spec({1});
+  sp.assets = {{"a.obj", std::string(64, 'a')}};
+  const int64_t j = s.submit(sp, 3);
+  EXPECT_EQ(s.assets(j), sp.assets);
 }
 
 }  // namespace

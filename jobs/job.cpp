@@ -1,0 +1,26 @@
+#include "jobs/job.h"
+
+namespace vesper {
+
+std::string asset_name_problem(std::string_view name) {
+  if (name.empty()) return "expected a non-empty relative path";
+  if (name.size() > kMaxAssetNameLength)
+    return "longer than " + std::to_string(kMaxAssetNameLength) + " characters";
+  if (name.find('\0') != std::string_view::npos) return "contains a NUL character";
+  if (name.find('\\') != std::string_view::npos)
+    return "contains a backslash (use '/' to separate directories)";
+  if (name.front() == '/') return "is an absolute path (expected a path relative to the scene)";
+  size_t begin = 0;
+  for (;;) {
+    const size_t end = std::min(name.find('/', begin), name.size());
+    const std::string_view seg = name.substr(begin, end - begin);
+    if (seg.empty()) return "has an empty path segment ('//' or a trailing '/')";
+    if (seg == "." || seg == "..")
+      return "has a '" + std::string(seg) + "' segment (names cannot leave the scene directory)";
+    if (end == name.size()) break;
+    begin = end + 1;
+  }
+  return {};
+}
+
+}  // namespace vesper
