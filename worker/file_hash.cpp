@@ -29,6 +29,19 @@ std::optional<std::string> sha256_file(const std::filesystem::path& file) {
   return out;
 }
 
+std::string sha256_hex(std::string_view data) {
+  unsigned char md[EVP_MAX_MD_SIZE];
+  unsigned int len = 0;
+  EVP_Digest(data.data(), data.size(), md, &len, EVP_sha256(), nullptr);
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (unsigned i = 0; i < len; ++i) {
+    out += hex[md[i] >> 4];
+    out += hex[md[i] & 15];
+  }
+  return out;
+}
+
 bool is_blob_name(std::string_view s) {
   if (s.size() != 64) return false;
   for (char c : s)

@@ -10,6 +10,7 @@ namespace vesper::worker_detail {
 
 // nullopt if the file cannot be read.
 std::optional<std::string> sha256_file(const std::filesystem::path& file);
+std::string sha256_hex(std::string_view data);
 bool is_blob_name(std::string_view s);
 
 }  // namespace vesper::worker_detail

@@ -15,6 +15,7 @@
 #include "jobs/child_process.h"
 #include "worker/file_hash.h"
 #include "worker/http_client.h"
+#include "worker/task_dir.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -106,17 +107,21 @@ bool sleep_unless_stopped(const std::atomic<bool>& stop, double seconds) {
 
 namespace {
 
-struct Task {
+struct LeasedTask {
   std::string lease_id, scene;
   int spp = 0, sample_begin = 0, sample_end = 0, frame = 0, attempt = 0;
   std::string id, job_id;  // as the server spells them (numbers or strings)
   double lease_seconds = 60;
+  std::vector<Asset> assets;
+  // A sample range that is not the whole frame renders a partial (exact
+  // sample sums) for the server's `vesper merge`.
+  bool partial() const { return sample_begin != 0 || sample_end != spp; }
 };
 
 std::string id_string(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
-Task parse_lease(const json& j) {
-  Task t;
+LeasedTask parse_lease(const json& j) {
+  LeasedTask t;
   t.lease_id = j.at("lease_id").get<std::string>();
   t.scene = j.at("scene").get<std::string>();
   t.spp = j.at("spp").get<int>();
@@ -128,6 +133,9 @@ Task parse_lease(const json& j) {
   t.attempt = task.value("attempt", 0);
   t.sample_begin = task.value("sample_begin", 0);
   t.sample_end = task.value("sample_end", t.spp);
+  if (j.contains("assets"))
+    for (const json& a : j.at("assets"))
+      t.assets.push_back({a.at("name").get<std::string>(), a.at("blob").get<std::string>()});
   return t;
 }
 
@@ -219,7 +227,7 @@ int Worker::run() {
       continue;
     }
     w.backoff = 0;
-    Task t;
+    LeasedTask t;
     try {
       t = parse_lease(json::parse(r.body));
     } catch (const std::exception& e) {
@@ -244,39 +252,56 @@ int Worker::run() {
     spdlog::info("task {} (job {}, frame {}, samples [{}, {}) of {}, attempt {}): leased", t.id,
                  t.job_id, t.frame, t.sample_begin, t.sample_end, t.spp, t.attempt);
 
-    // 1. The scene, from the verified cache.
-    if (!worker_detail::is_blob_name(t.scene)) {
-      fail("worker: the lease names a malformed scene hash '" + t.scene + "'");
-      continue;
-    }
-    const fs::path scene_file = cfg.cache_dir / (t.scene + ".json");
-    if (worker_detail::sha256_file(scene_file) != t.scene) {
+    // 1. The scene and its assets, from the verified cache, in a task directory.
+    // Downloads stream into tmp/, are hashed and renamed into place only when
+    // the hash matches.
+    auto fetch = [&](const std::string& blob, const fs::path& file,
+                     const std::string& what) -> std::string {
+      if (!worker_detail::is_blob_name(blob))
+        return "the lease names a malformed " + what + " hash '" + blob + "'";
+      if (worker_detail::sha256_file(file) == blob) return {};
       const fs::path part =
           cfg.cache_dir / "tmp" /
-          (t.scene + "." + w.instance + "." + std::to_string(++w.render_counter) + ".part");
-      const HttpResponse g = w.http->get_to_file(std::string(kApi) + "/blobs/" + t.scene, part);
+          (blob + "." + w.instance + "." + std::to_string(++w.render_counter) + ".part");
+      const HttpResponse g = w.http->get_to_file(std::string(kApi) + "/blobs/" + blob, part);
       std::string problem;
       if (g.status != 200)
-        problem = "download of scene blob " + t.scene + " failed: " + describe(g);
-      else if (const auto got = worker_detail::sha256_file(part); got != t.scene)
-        problem = "downloaded scene blob does not match its hash: expected " + t.scene + ", got " +
-                  got.value_or("(unreadable)");
+        problem = "download of " + what + " blob " + blob + " failed: " + describe(g);
+      else if (const auto got = worker_detail::sha256_file(part); got != blob)
+        problem = "downloaded " + what + " blob does not match its hash: expected " + blob +
+                  ", got " + got.value_or("(unreadable)");
       else
-        fs::rename(part, scene_file, ec);
-      if (problem.empty() && ec)
-        problem = "cannot store " + scene_file.string() + ": " + ec.message();
+        fs::rename(part, file, ec);
+      if (problem.empty() && ec) problem = "cannot store " + file.string() + ": " + ec.message();
       fs::remove(part, ec);
-      if (!problem.empty()) {
-        spdlog::error("task {}: {}", t.id, problem);
-        fail("worker: " + problem);
-        continue;
+      return problem;
+    };
+    std::string problem = fetch(t.scene, cfg.cache_dir / (t.scene + ".json"), "scene");
+    for (size_t i = 0; problem.empty() && i < t.assets.size(); ++i)
+      problem =
+          fetch(t.assets[i].blob, worker_detail::asset_cache_file(cfg.cache_dir, t.assets[i].blob),
+                "asset '" + t.assets[i].name + "'");
+    fs::path task_dir;
+    if (problem.empty()) {
+      try {
+        task_dir = worker_detail::materialise_task_dir(
+            cfg.cache_dir, t.scene, t.assets,
+            w.instance + "-" + std::to_string(++w.render_counter));
+      } catch (const std::exception& e) {
+        problem = std::string("cannot prepare the task directory: ") + e.what();
       }
     }
+    if (!problem.empty()) {
+      spdlog::error("task {}: {}", t.id, problem);
+      fail("worker: " + problem);
+      continue;
+    }
+    const fs::path scene_file = task_dir / "scene.json";
 
     // 2. Render in a child process.
-    const fs::path out =
-        cfg.cache_dir / "tmp" /
-        ("render-" + w.instance + "-" + std::to_string(++w.render_counter) + ".exr");
+    const fs::path out = cfg.cache_dir / "tmp" /
+                         ("render-" + w.instance + "-" + std::to_string(++w.render_counter) +
+                          (t.partial() ? ".vpartial" : ".exr"));
     std::vector<std::string> argv = {cfg.vesper_binary.string(),
                                      "render",
                                      scene_file.string(),
@@ -287,7 +312,10 @@ int Worker::run() {
                                      "--sample-begin",
                                      std::to_string(t.sample_begin),
                                      "--sample-end",
-                                     std::to_string(t.sample_end)};
+                                     std::to_string(t.sample_end),
+                                     "--frame",
+                                     std::to_string(t.frame)};
+    if (t.partial()) argv.push_back("--partial");
     try {  // the seed the scene asks for, passed explicitly
       std::ifstream in(scene_file);
       const json scene = json::parse(in);
