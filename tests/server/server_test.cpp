@@ -617,5 +617,282 @@ TEST_F(ServerTest, UnknownEndpointIsJson404) {
   EXPECT_TRUE(json::parse(r->body).contains("error"));
 }
 
+TEST_F(ServerTest, AssetsAreValidatedNamingTheJsonPath) {
+  start();
+  const std::string scene = put_blob("scene");
+  const std::string a = put_blob("mesh a"), b = put_blob("mesh b");
+  const json good{
+      {"scene", scene},
+      {"frames", "1"},
+      {"assets", {{{"name", "assets/a.obj"}, {"blob", a}}, {{"name", "b.obj"}, {"blob", b}}}}};
+  struct Case {
+    json assets;
+    std::string path;
+  };
+  auto one = [&](const std::string& name) {
+    return json::array({{{"name", "ok.obj"}, {"blob", a}}, {{"name", name}, {"blob", b}}});
+  };
+  const std::vector<Case> cases = {
+      {one("../x"), "/assets/1/name"},
+      {one("/etc/passwd"), "/assets/1/name"},
+      {one("a/../../b"), "/assets/1/name"},
+      {one("a//b"), "/assets/1/name"},
+      {one("a/./b"), "/assets/1/name"},
+      {one("a\\b"), "/assets/1/name"},
+      {one(std::string("a\0b", 3)), "/assets/1/name"},
+      {one(""), "/assets/1/name"},
+      {one("dir/"), "/assets/1/name"},
+      {one(std::string(256, 'x')), "/assets/1/name"},
+      {one("scene.json"), "/assets/1/name"},
+      {one("ok.obj"), "/assets/1/name"},        // duplicate
+      {one("ok.obj/inner"), "/assets/0/name"},  // a file and a directory at once
+      {json::array({{{"name", "a.obj"}, {"blob", a}},
+                    {{"name", "b.obj"}, {"blob", a}},
+                    {{"name", "c.obj"}, {"blob", a}},
+                    {{"name", "d.obj"}, {"blob", sha256_hex("never uploaded")}}}),
+       "/assets/3/blob"},
+      {json::array({{{"name", "a.obj"}, {"blob", "A" + a.substr(1)}}}), "/assets/0/blob"},
+      {json::array({{{"name", "a.obj"}, {"blob", 5}}}), "/assets/0/blob"},
+      {json::array({{{"name", "a.obj"}}}), "/assets/0/blob"},
+      {json::array({{{"name", 3}, {"blob", a}}}), "/assets/0/name"},
+      {json::array({{{"name", "a.obj"}, {"blob", a}, {"size", 3}}}), "/assets/0/size"},
+      {json::array({"a.obj"}), "/assets/0"},
+      {json{{"a.obj", a}}, "/assets"},
+  };
+  for (const Case& k : cases) {
+    json body = good;
+    body["assets"] = k.assets;
+    for (const char* query : {"", "?dry_run=1"}) {
+      auto r = client().Post((std::string("/api/v1/jobs") + query).c_str(), sub(), body.dump(),
+                             "application/json");
+      ASSERT_TRUE(r);
+      EXPECT_EQ(r->status, 400) << k.assets.dump() << query << ": " << r->body;
+      const json e = json::parse(r->body);
+      EXPECT_EQ(e.value("path", ""), k.path) << k.assets.dump() << ": " << r->body;
+      EXPECT_FALSE(e.value("error", "").empty());
+    }
+  }
+  EXPECT_TRUE(get_ok("/jobs").at("jobs").empty());
+  auto r = client().Post("/api/v1/jobs?dry_run=1", sub(), good.dump(), "application/json");
+  EXPECT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(post("/jobs", good, sub())->status, 201);
+}
+
+TEST_F(ServerTest, LeaseCarriesTheAssets) {
+  start();
+  const std::string scene = put_blob("scene");
+  const std::string a = put_blob("mesh a"), b = put_blob("vdb b");
+  const json assets =
+      json::array({{{"name", "meshes/a.obj"}, {"blob", a}}, {{"name", "smoke.vdb"}, {"blob", b}}});
+  post_ok("/jobs", {{"scene", scene}, {"frames", "1"}, {"assets", assets}}, sub(), 201);
+  const std::string w = register_worker("w");
+  const json l = lease(w);
+  EXPECT_EQ(l.at("assets"), assets);
+  // A job without assets leases an empty list.
+  const int64_t other = submit(1);
+  (void)other;
+  const json m = lease(w);
+  EXPECT_EQ(m.at("assets"), json::array());
+}
+
+// A stand-in for `vesper merge -o OUT IN... -q`: logs each run to `runs`,
+// concatenates its inputs after `seconds` (or fails with `exit_code` and a
+// message on stderr).
+fs::path fake_merger(const fs::path& dir, const std::string& name, double seconds,
+                     int exit_code = 0) {
+  fs::create_directories(dir);
+  const fs::path script = dir / name;
+  std::ofstream f(script);
+  f << "#!/bin/sh\n"
+    << "echo run >> '" << (dir / (name + ".runs")).string() << "'\n"
+    << "[ \"$1\" = merge ] && [ \"$2\" = -o ] || exit 9\n"
+    << "out=\"$3\"; shift 3\n"
+    << "sleep " << seconds << "\n";
+  if (exit_code != 0) {
+    f << "echo 'boom: cannot merge these partials' >&2\nexit " << exit_code << "\n";
+  } else {
+    f << ": > \"$out.tmp\"\n"
+      << "for a in \"$@\"; do [ \"$a\" = -q ] || cat \"$a\" >> \"$out.tmp\"; done\n"
+      << "mv \"$out.tmp\" \"$out\"\n";
+  }
+  f.close();
+  fs::permissions(script, fs::perms::owner_all);
+  return script;
+}
+
+int runs_of(const fs::path& script) {
+  std::ifstream in(script.string() + ".runs");
+  int n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
+class FrameTest : public ServerTest {
+ protected:
+  // Completes every queued task of the job with the result "result of task
+  // <id>"; returns the results by task id.
+  std::map<int64_t, std::string> complete_all() {
+    const std::string w = register_worker("w");
+    std::map<int64_t, std::string> results;
+    for (;;) {
+      auto r = post("/lease", {{"worker_id", w}}, wrk());
+      if (!r || r->status != 200) break;
+      const json l = json::parse(r->body);
+      const int64_t id = l.at("task").at("id");
+      results[id] = "result of task " + std::to_string(id);
+      post_ok("/complete", {{"lease_id", l.at("lease_id")}, {"result", put_blob(results[id])}},
+              wrk());
+    }
+    return results;
+  }
+  httplib::Result frame(int64_t job, int frame) {
+    return client().Get(
+        ("/api/v1/jobs/" + std::to_string(job) + "/frames/" + std::to_string(frame)).c_str(),
+        sub());
+  }
+  json frames(int64_t job) {
+    return get_ok("/jobs/" + std::to_string(job) + "/frames").at("frames");
+  }
+  // Waits until the listing shows `frame` in `state`.
+  bool wait_for_state(int64_t job, size_t index, const std::string& state) {
+    for (int i = 0; i < 200; ++i) {
+      if (frames(job).at(index).at("state") == state) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    }
+    return false;
+  }
+};
+
+TEST_F(FrameTest, AOneTaskFrameIsItsResultAndNeedsNoMerge) {
+  start();  // no vesper binary next to the test: merging is unavailable
+  const int64_t job = submit(2);
+  auto r = frame(job, 1);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 409) << r->body;
+  EXPECT_NE(json::parse(r->body).at("error").get<std::string>().find("not finished"),
+            std::string::npos);
+  EXPECT_EQ(frames(job), json::parse(R"([{"frame": 1, "state": "pending", "tasks": 1, "done": 0},
+                                          {"frame": 2, "state": "pending", "tasks": 1, "done": 0}])"));
+  const auto results = complete_all();
+  ASSERT_EQ(results.size(), 2u);
+  const json f = frames(job);
+  EXPECT_EQ(f.at(0).at("state"), "ready");
+  EXPECT_EQ(f.at(0).at("blob"), sha256_hex(results.begin()->second));
+  r = frame(job, 1);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->body, results.begin()->second);
+  EXPECT_EQ(r->get_header_value("Content-Type"), "image/x-exr");
+  // Unknown frame, job, malformed frame: 404. The worker token cannot read frames.
+  EXPECT_EQ(frame(job, 3)->status, 404);
+  EXPECT_EQ(frame(job + 1, 1)->status, 404);
+  EXPECT_EQ(
+      client().Get(("/api/v1/jobs/" + std::to_string(job) + "/frames/x").c_str(), sub())->status,
+      404);
+  EXPECT_EQ(
+      client().Get(("/api/v1/jobs/" + std::to_string(job) + "/frames").c_str(), wrk())->status,
+      401);
+}
+
+TEST_F(FrameTest, WithoutAVesperBinaryASplitFrameIs503) {
+  start();
+  const int64_t job = submit(1, 8, 4);
+  complete_all();
+  auto r = frame(job, 1);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 503) << r->body;
+  EXPECT_NE(json::parse(r->body).at("error").get<std::string>().find("vesper"), std::string::npos);
+  EXPECT_EQ(frames(job).at(0).at("state"), "pending");
+}
+
+TEST_F(FrameTest, ASplitFrameIsMergedOnceEvenWhenRequestsRace) {
+  ServerConfig c = config();
+  c.vesper_binary = fake_merger(dir_ / "bin", "vesper", 0.3);
+  start(c);
+  const int64_t job = submit(1, 8, 2);  // 4 tasks
+  auto r = frame(job, 1);
+  EXPECT_EQ(r->status, 409);
+  const auto results = complete_all();  // the background merge starts
+  ASSERT_EQ(results.size(), 4u);
+  std::string expected;  // the fake concatenates in sample order (= task id order here)
+  for (const auto& [id, bytes] : results) expected += bytes;
+  std::vector<std::thread> threads;
+  std::vector<std::string> got(4);
+  for (int i = 0; i < 4; ++i)
+    threads.emplace_back([&, i] {
+      auto res = frame(job, 1);
+      got[size_t(i)] = res ? std::to_string(res->status) + ":" + res->body : "no answer";
+    });
+  for (auto& t : threads) t.join();
+  for (const std::string& g : got) EXPECT_EQ(g, "200:" + expected);
+  EXPECT_EQ(runs_of(c.vesper_binary), 1);
+  const json f = frames(job);
+  EXPECT_EQ(f.at(0).at("state"), "ready");
+  EXPECT_EQ(f.at(0).at("blob"), sha256_hex(expected));
+  // Recorded: a restarted server serves it without merging again.
+  start(c);
+  EXPECT_EQ(frame(job, 1)->body, expected);
+  EXPECT_EQ(runs_of(c.vesper_binary), 1);
+  EXPECT_TRUE(fs::is_empty(dir_ / "data" / "merge-tmp"));
+}
+
+TEST_F(FrameTest, TheMergeRunsInTheBackgroundAfterTheLastTask) {
+  ServerConfig c = config();
+  c.vesper_binary = fake_merger(dir_ / "bin", "vesper", 0);
+  start(c);
+  const int64_t job = submit(2, 8, 4);
+  complete_all();
+  EXPECT_TRUE(wait_for_state(job, 0, "ready"));
+  EXPECT_TRUE(wait_for_state(job, 1, "ready"));
+  EXPECT_EQ(runs_of(c.vesper_binary), 2);
+}
+
+TEST_F(FrameTest, AFailedMergeIs500WithItsStderrAndIsNotRetriedInALoop) {
+  ServerConfig c = config();
+  c.vesper_binary = fake_merger(dir_ / "bin", "vesper", 0, 3);
+  c.merge_retry_seconds = 0.5;
+  start(c);
+  const int64_t job = submit(1, 8, 4);
+  complete_all();
+  EXPECT_TRUE(wait_for_state(job, 0, "failed"));
+  EXPECT_NE(frames(job).at(0).at("error").get<std::string>().find("boom"), std::string::npos);
+  auto r = frame(job, 1);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 500) << r->body;
+  const std::string error = json::parse(r->body).at("error");
+  EXPECT_NE(error.find("exit code 3"), std::string::npos) << error;
+  EXPECT_NE(error.find("boom: cannot merge these partials"), std::string::npos) << error;
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(runs_of(c.vesper_binary), 1);  // not retried yet
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  EXPECT_EQ(frame(job, 1)->status, 500);  // retried on request after merge_retry_seconds
+  EXPECT_EQ(runs_of(c.vesper_binary), 2);
+}
+
+TEST_F(FrameTest, AMergeKilledWithTheServerRecordsNothingAndIsRedoneAfterARestart) {
+  ServerConfig slow = config();
+  slow.vesper_binary = fake_merger(dir_ / "bin", "slow", 30);
+  start(slow);
+  const int64_t job = submit(1, 8, 4);
+  const auto results = complete_all();
+  for (int i = 0; i < 200 && runs_of(slow.vesper_binary) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  ASSERT_EQ(runs_of(slow.vesper_binary), 1);  // the merge is running
+  const auto stopped_at = std::chrono::steady_clock::now();
+  server_.reset();  // stops the server, killing the merge
+  EXPECT_LT(std::chrono::steady_clock::now() - stopped_at, std::chrono::seconds(10));
+  ServerConfig fast = config();
+  fast.vesper_binary = fake_merger(dir_ / "bin", "fast", 0);
+  start(fast);
+  EXPECT_TRUE(wait_for_state(job, 0, "ready"));  // redone by the background merger at start
+  std::string expected;
+  for (const auto& [id, bytes] : results) expected += bytes;
+  auto r = frame(job, 1);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->body, expected);
+  EXPECT_EQ(runs_of(fast.vesper_binary), 1);
+}
+
 }  // namespace
 }  // namespace vesper
