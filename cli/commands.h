@@ -109,6 +109,9 @@ int run_server(const ServerCommandOptions& options);
 struct WorkerCommandOptions {
   FarmOptions farm;
   std::optional<std::string> name, cache_dir;
+  // The renderer run for each task (default: this vesper binary); e.g. a
+  // pinned release, or a wrapper that sets up the environment.
+  std::optional<std::string> renderer;
   std::optional<int> threads;
   int max_tasks = -1;
   bool exit_when_idle = false;

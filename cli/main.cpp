@@ -135,6 +135,9 @@ int main(int argc, char** argv) {
   add_farm(wk, worker.farm, true);
   wk->add_option("--name", worker.name, "Name shown by the server (default: hostname)");
   wk->add_option("--cache-dir", worker.cache_dir, "Blob cache and render temp files");
+  wk->add_option("--renderer", worker.renderer,
+                 "Executable run as `RENDERER render ...` per task (default: this vesper)")
+      ->check(CLI::ExistingFile);
   wk->add_option("--threads", worker.threads, "Render threads per task (default: all cores)")
       ->check(CLI::PositiveNumber);
   wk->add_option("--max-tasks", worker.max_tasks, "Exit after this many tasks");

@@ -47,7 +47,7 @@ int run_worker(const WorkerCommandOptions& o) {
     return 2;
   }
   if (o.name) c.name = *o.name;
-  c.vesper_binary = self_executable();
+  c.vesper_binary = o.renderer ? std::filesystem::path(*o.renderer) : self_executable();
   c.max_tasks = o.max_tasks;
   c.exit_when_idle = o.exit_when_idle;
 

@@ -1,0 +1,232 @@
+// The farm end to end: real `vesper server` and `vesper worker` processes on
+// 127.0.0.1, jobs submitted with `vesper submit`, frames fetched with `vesper
+// fetch` and compared bit for bit with direct `vesper render` runs. Processes
+// are killed with SIGKILL / stopped with SIGSTOP to check nothing is lost.
+#include <fmt/format.h>
+
+#include "tests/cli/farm_test_fixture.h"
+
+namespace vesper::test {
+namespace {
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST_F(FarmTest, SixFramesOnTwoWorkersEqualLocalRenders) {
+  const auto config = write_config(10);
+  const auto scene = write_scene(48, 36, 8);
+  start_server(config);
+  start_worker("w1", config);
+  start_worker("w2", config);
+  const long long id = submit(scene.string() + " --frames 1-6 --name six");
+  const auto j = wait_finished(id, 120);
+  ASSERT_EQ(j.at("counts").at("done"), 6) << j.dump();
+
+  const RunResult f = farm(fmt::format("fetch {} -o {}", id, (dir_ / "frames").string()));
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  for (int frame = 1; frame <= 6; ++frame) {
+    const auto local = dir_ / fmt::format("local.{}.exr", frame);
+    const RunResult r =
+        run(fmt::format("render {} -o {} --frame {} -q", scene.string(), local.string(), frame));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    expect_bitwise_equal(dir_ / "frames" / fmt::format("six.{:04d}.exr", frame), local);
+  }
+  // Frames are decorrelated: frame 1 and frame 2 are different renders.
+  const LayeredImage a = read_exr(dir_ / "frames/six.0001.exr"),
+                     b = read_exr(dir_ / "frames/six.0002.exr");
+  EXPECT_NE(a.pixels, b.pixels);
+}
+
+TEST_F(FarmTest, FrameSplitIntoFourTasksMergesToTheSingleRender) {
+  const auto config = write_config(10);
+  const auto scene = write_scene(40, 30, 20);
+  start_server(config);
+  start_worker("w1", config);
+  start_worker("w2", config);
+  // 20 samples in tasks of 6: [0,6) [6,12) [12,18) [18,20).
+  const long long id = submit(scene.string() + " --frames 7 --split 6 --name split");
+  const auto j = wait_finished(id, 120);
+  ASSERT_EQ(j.at("counts").at("done"), 4) << j.dump();
+  const RunResult f = farm(fmt::format("fetch {} -o {}", id, (dir_ / "frames").string()));
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  const auto local = dir_ / "local.exr";
+  ASSERT_EQ(
+      run(fmt::format("render {} -o {} --frame 7 -q", scene.string(), local.string())).exit_code,
+      0);
+  expect_bitwise_equal(dir_ / "frames/split.0007.exr", local);
+}
+
+// A worker killed while it renders: its lease expires, the other worker
+// renders the task, the job completes with every frame.
+TEST_F(FarmTest, KilledWorkerLosesNoWork) {
+  const auto config = write_config(2);
+  const auto scene = write_scene(64, 48, 400);
+  start_server(config);
+  auto& doomed = start_worker("doomed", config);
+  const long long id = submit(scene.string() + " --frames 1-2 --name kill");
+  wait_job(id, 60, [](const nlohmann::json& j) { return j.at("counts").at("leased") == 1; });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // mid-render
+  doomed.signal(SIGKILL);
+  ASSERT_TRUE(doomed.wait_for(5));
+  start_worker("survivor", config);
+  const auto j = wait_finished(id, 180);
+  EXPECT_EQ(j.at("counts").at("done"), 2) << j.dump();
+  int retried = 0;
+  for (const auto& t : j.at("tasks")) retried += t.at("attempts").get<int>() > 0;
+  EXPECT_GE(retried, 1) << "the killed worker's lease should count as a failed attempt";
+  const RunResult f = farm(fmt::format("fetch {} -o {}", id, (dir_ / "frames").string()));
+  EXPECT_EQ(f.exit_code, 0) << f.err;
+  EXPECT_EQ(count(f.out, ".exr"), 2) << f.out;
+}
+
+// A worker frozen (SIGSTOP) past its lease comes back after the task was
+// rendered by another worker: its upload is refused and the committed result
+// stays the other worker's.
+TEST_F(FarmTest, LateCompletionOfAnExpiredLeaseIsRefused) {
+  const auto config = write_config(1.5);
+  const auto scene = write_scene(64, 48, 300);
+  start_server(config);
+  auto& sleeper = start_worker("sleeper", config);
+  const long long id = submit(scene.string() + " --frames 1 --name late");
+  wait_job(id, 60, [](const nlohmann::json& j) { return j.at("counts").at("leased") == 1; });
+  sleeper.signal(SIGSTOP);
+  start_worker("other", config);
+  const auto j = wait_finished(id, 180);
+  ASSERT_EQ(j.at("counts").at("done"), 1);
+  const std::string result = j.at("tasks").at(0).at("result");
+  sleeper.signal(SIGCONT);
+  // The sleeper's render (its child kept running) ends; its lease is stale.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (worker_log("sleeper").find("stale") == std::string::npos &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_NE(worker_log("sleeper").find("stale"), std::string::npos) << worker_log("sleeper");
+  const auto after = job(id);
+  EXPECT_EQ(after.at("counts").at("done"), 1);
+  EXPECT_EQ(after.at("tasks").at(0).at("result"), result) << "a stale upload replaced the result";
+}
+
+// The server killed mid-job and restarted on the same data dir and port:
+// committed frames stay committed, the job completes.
+TEST_F(FarmTest, KilledServerRestartsAndTheJobCompletes) {
+  const auto config = write_config(3);
+  const auto scene = write_scene(48, 36, 100);
+  start_server(config);
+  start_worker("w1", config);
+  const long long id = submit(scene.string() + " --frames 1-4 --name restart");
+  const auto before =
+      wait_job(id, 120, [](const nlohmann::json& j) { return j.at("counts").at("done") >= 1; });
+  std::map<long long, std::string> committed;
+  for (const auto& t : before.at("tasks"))
+    if (t.at("state") == "done") committed[t.at("id")] = t.at("result");
+  server_->signal(SIGKILL);
+  ASSERT_TRUE(server_->wait_for(5));
+  start_server(config);  // same port
+  const auto j = wait_finished(id, 180);
+  EXPECT_EQ(j.at("counts").at("done"), 4) << j.dump();
+  for (const auto& t : j.at("tasks")) {
+    if (committed.count(t.at("id"))) {
+      EXPECT_EQ(t.at("result"), committed[t.at("id")]);
+    }
+  }
+}
+
+// A renderer that crashes on frame 3 fails that task after max attempts (with
+// its log); the rest of the job completes; a worker whose renderer always
+// crashes is blocklisted for the job after `blocklist_threshold` failures.
+TEST_F(FarmTest, CrashingRenderFailsItsTaskAndBlocklistsTheBrokenWorker) {
+  const auto config = write_config(10, 2);
+  const auto scene = write_scene(32, 24, 4);
+  const auto broken = dir_ / "broken-renderer.sh";
+  std::ofstream(broken) << "#!/bin/sh\necho 'renderer: simulated crash' >&2\nkill -SEGV $$\n";
+  const auto flaky = dir_ / "crash-on-frame-3.sh";
+  std::ofstream(flaky) << "#!/bin/sh\ncase \" $* \" in *\" --frame 3 \"*) echo 'frame 3 crashes' "
+                          ">&2; kill -SEGV $$;; esac\nexec "
+                       << VESPER_BINARY << " \"$@\"\n";
+  std::filesystem::permissions(broken, std::filesystem::perms::owner_all);
+  std::filesystem::permissions(flaky, std::filesystem::perms::owner_all);
+  start_server(config);
+  const long long id = submit(scene.string() + " --frames 1-4 --max-attempts 3 --name crash");
+  // The broken worker alone first: it fails two tasks, then is blocked.
+  start_worker("broken", config, {"--renderer", broken.string()});
+  wait_job(id, 60, [](const nlohmann::json& j) {
+    int attempts = 0;
+    for (const auto& t : j.at("tasks")) attempts += t.at("attempts").get<int>();
+    return attempts >= 2;
+  });
+  start_worker("flaky", config, {"--renderer", flaky.string()});
+  const auto j = wait_finished(id, 120);
+  EXPECT_EQ(j.at("counts").at("done"), 3) << j.dump();
+  EXPECT_EQ(j.at("counts").at("failed"), 1) << j.dump();
+  for (const auto& t : j.at("tasks")) {
+    if (t.at("frame") != 3) continue;
+    EXPECT_EQ(t.at("state"), "failed");
+    EXPECT_EQ(t.at("attempts"), 3);
+    EXPECT_TRUE(t.at("has_log").get<bool>());
+  }
+  const RunResult logs = farm(fmt::format("logs {}", id));
+  EXPECT_EQ(logs.exit_code, 0) << logs.err;
+  EXPECT_NE(logs.out.find("frame 3 crashes"), std::string::npos) << logs.out;
+  EXPECT_NE(logs.out.find("signal"), std::string::npos) << logs.out;
+  // Blocked after its second failed task: the broken worker never got a third.
+  EXPECT_EQ(count(worker_log("broken"), "render failed"), 2) << worker_log("broken");
+  httplib::Client c("127.0.0.1", port_);
+  c.set_bearer_token_auth(submitter_);
+  const auto workers = nlohmann::json::parse(c.Get("/api/v1/workers")->body);
+  std::map<std::string, std::string> id_of;
+  for (const auto& w : workers.at("workers")) id_of[w.at("name")] = w.at("worker_id");
+  EXPECT_EQ(j.at("blocked_workers"), nlohmann::json::array({id_of["broken"]})) << j.dump();
+  const RunResult status = farm(fmt::format("status {}", id));
+  EXPECT_EQ(status.exit_code, 0);
+  EXPECT_NE(status.out.find("1 failed"), std::string::npos) << status.out;
+}
+
+TEST_F(FarmTest, SubmitErrorsNameTheProblem) {
+  const auto config = write_config(10);
+  const auto scene = write_scene(16, 16, 1);
+  start_server(config);
+  const RunResult bad_token =
+      run("submit " + scene.string() + " --server " + url_ + " --token nope");
+  EXPECT_EQ(bad_token.exit_code, 1);
+  EXPECT_NE(bad_token.err.find("401"), std::string::npos) << bad_token.err;
+
+  const auto job_file = dir_ / "job.json";
+  std::ofstream(job_file)
+      << R"({"format": "vesper-job/1", "scene": "scene/scene.json", "spp": -3})";
+  const RunResult bad_job = farm("submit " + job_file.string());
+  EXPECT_EQ(bad_job.exit_code, 2);
+  EXPECT_NE(bad_job.err.find("job.json: /spp: expected an integer"), std::string::npos)
+      << bad_job.err;
+
+  const RunResult bad_frames = farm("submit " + scene.string() + " --frames 5-1");
+  EXPECT_NE(bad_frames.exit_code, 0);
+  EXPECT_NE(bad_frames.err.find("5-1"), std::string::npos) << bad_frames.err;
+
+  const RunResult dry = farm("submit " + scene.string() + " --frames 1-10x3 --dry-run");
+  EXPECT_EQ(dry.exit_code, 0) << dry.err;
+  EXPECT_NE(dry.err.find("4 tasks"), std::string::npos) << dry.err;
+  const RunResult status = farm("status");
+  EXPECT_NE(status.out.find("no jobs"), std::string::npos) << status.out;
+}
+
+TEST_F(FarmTest, UpRendersFetchesAndComposites) {
+  const auto scene = write_scene(32, 24, 4);
+  std::ofstream(scene.parent_path() / "comp.json") << R"({
+    "format": "vesper-comp/1", "inputs": {"frame": "unused.exr"},
+    "layers": [{"layer": "beauty"}],
+    "outputs": {"image": "x.png", "histogram_plot": "x.hist.png"}})";
+  const RunResult r =
+      run(fmt::format("up --scene {} --frames 1-2 --workers 2 --data-dir {} -o {}", scene.string(),
+                      (dir_ / "farm").string(), (dir_ / "out").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "out/scene.0001.exr")) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "out/scene.0002.exr")) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "out/scene.0002.comp.png")) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "out/scene.0002.comp.hist.png")) << r.out;
+}
+
+}  // namespace
+}  // namespace vesper::test
