@@ -77,6 +77,15 @@ CREATE TABLE frame_outputs(
   job_id INTEGER NOT NULL REFERENCES jobs(id), frame INTEGER NOT NULL, blob TEXT NOT NULL,
   created REAL NOT NULL, PRIMARY KEY(job_id, frame));
 )sql",
+    // 4: the blocklist counts the distinct tasks a worker failed in a job, so a
+    // frame that crashes everywhere fails itself instead of blocking every
+    // worker (the old per-worker counters are dropped: blocklists reset).
+    R"sql(
+DROP TABLE worker_failures;
+CREATE TABLE worker_task_failures(
+  job_id INTEGER NOT NULL, worker TEXT NOT NULL, task_id INTEGER NOT NULL,
+  failures INTEGER NOT NULL, PRIMARY KEY(job_id, worker, task_id));
+)sql",
 };
 
 std::string new_lease_id() {
@@ -134,10 +143,12 @@ struct JobStore::Impl {
         .run();
     if (!worker.empty())
       sql::Stmt(db,
-                "INSERT INTO worker_failures(job_id, worker, failures) VALUES(?1, ?2, 1) "
-                "ON CONFLICT(job_id, worker) DO UPDATE SET failures = failures + 1")
+                "INSERT INTO worker_task_failures(job_id, worker, task_id, failures) "
+                "VALUES(?1, ?2, ?3, 1) ON CONFLICT(job_id, worker, task_id) "
+                "DO UPDATE SET failures = failures + 1")
           .bind(1, job_id)
           .bind(2, worker)
+          .bind(3, task_id)
           .run();
   }
 
@@ -296,10 +307,12 @@ std::optional<Lease> JobStore::lease(const std::string& worker, double now) {
   impl_->expire(now);
   sql::Stmt pick(db,
                  "SELECT t.id, j.scene, j.spp FROM tasks t JOIN jobs j ON j.id = t.job_id "
-                 "WHERE t.state = 'queued' AND j.state = 'active' AND NOT EXISTS ("
-                 "  SELECT 1 FROM worker_failures f WHERE f.job_id = j.id AND f.worker = ?1 AND "
-                 "f.failures >= ?2) "
-                 "ORDER BY j.priority DESC, j.id, t.frame, t.sample_begin LIMIT 1");
+                 "WHERE t.state = 'queued' AND j.state = 'active' AND ("
+                 "  SELECT COUNT(*) FROM worker_task_failures f WHERE f.job_id = j.id AND "
+                 "f.worker = ?1) < ?2 "
+                 // A retry goes to a worker that has not failed this task, when there is one.
+                 "ORDER BY j.priority DESC, j.id, EXISTS(SELECT 1 FROM worker_task_failures g "
+                 "WHERE g.task_id = t.id AND g.worker = ?1), t.frame, t.sample_begin LIMIT 1");
   pick.bind(1, worker).bind(2, int64_t(impl_->options.blocklist_threshold));
   if (!pick.step()) {
     tx.commit();  // expired leases were requeued
@@ -422,7 +435,7 @@ int JobStore::retry_failed(int64_t job) {
       .bind(1, job)
       .run();
   const int n = sqlite3_changes(db.get());
-  sql::Stmt(db, "DELETE FROM worker_failures WHERE job_id = ?1").bind(1, job).run();
+  sql::Stmt(db, "DELETE FROM worker_task_failures WHERE job_id = ?1").bind(1, job).run();
   tx.commit();
   return n;
 }
@@ -520,9 +533,20 @@ std::vector<std::pair<int64_t, int>> JobStore::frames_awaiting_merge() const {
 }
 
 bool JobStore::blocked(int64_t job, const std::string& worker) const {
-  sql::Stmt s(impl_->db, "SELECT failures FROM worker_failures WHERE job_id = ?1 AND worker = ?2");
+  sql::Stmt s(impl_->db,
+              "SELECT COUNT(*) FROM worker_task_failures WHERE job_id = ?1 AND worker = ?2");
   s.bind(1, job).bind(2, worker);
   return s.step() && s.i64(0) >= impl_->options.blocklist_threshold;
+}
+
+std::vector<std::string> JobStore::blocked_workers(int64_t job) const {
+  sql::Stmt s(impl_->db,
+              "SELECT worker FROM worker_task_failures WHERE job_id = ?1 GROUP BY worker "
+              "HAVING COUNT(*) >= ?2 ORDER BY worker");
+  s.bind(1, job).bind(2, int64_t(impl_->options.blocklist_threshold));
+  std::vector<std::string> out;
+  while (s.step()) out.push_back(s.text(0));
+  return out;
 }
 
 }  // namespace vesper

@@ -23,7 +23,7 @@ class StoreError : public std::runtime_error {
 struct StoreOptions {
   double lease_seconds = 60;
   int blocklist_threshold =
-      3;  // failures of one worker in one job before it is blocked for that job
+      3;  // distinct tasks of a job a worker failed before it is blocked for that job
 };
 
 // KeepRunning extends the lease; Stop: the job was canceled or paused;
@@ -42,7 +42,8 @@ class JobStore {
 
   int64_t submit(const JobSpec& spec, double now);
   // Requeues expired leases, then leases the best queued task this worker is
-  // not blocked for (highest priority, oldest job, lowest frame first).
+  // not blocked for (highest priority, oldest job, tasks this worker has not
+  // failed before those it has, lowest frame first).
   std::optional<Lease> lease(const std::string& worker, double now);
   HeartbeatAnswer heartbeat(const std::string& lease_id, double now);
   // Both refuse (return false) a lease that is no longer current: expired,
@@ -61,6 +62,7 @@ class JobStore {
   std::vector<JobSummary> jobs() const;
   std::vector<Task> tasks(int64_t job) const;
   bool blocked(int64_t job, const std::string& worker) const;
+  std::vector<std::string> blocked_workers(int64_t job) const;
   std::vector<Asset> assets(int64_t job) const;
 
   // Frames of a job (ascending), with their tasks' results and recorded output.

@@ -343,6 +343,7 @@ struct Server::Impl {
       std::lock_guard lock(store_mutex);
       out = summary_json(job_or_404(id));
       tasks = store->tasks(id);
+      out["blocked_workers"] = store->blocked_workers(id);
     }
     std::map<int64_t, double> progress;
     {
@@ -919,6 +920,9 @@ int Server::start() {
   s.http.new_task_queue = [threads] { return new httplib::ThreadPool(size_t(threads)); };
   s.http.set_payload_max_length(s.config.max_blob_bytes);
   s.http.set_keep_alive_timeout(5);
+  // Responses go out as headers + body; without TCP_NODELAY the body waits for
+  // the client's delayed ACK (~40 ms per keep-alive request, vesper_farm_bench).
+  s.http.set_tcp_nodelay(true);
   s.http.set_read_timeout(30);
   s.http.set_write_timeout(30);
   s.install_routes();

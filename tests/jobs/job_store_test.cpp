@@ -44,7 +44,7 @@ TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {
   EXPECT_EQ(tasks[2].sample_end, 10);  // the last range is short
   EXPECT_EQ(tasks[3].frame, 2);
   EXPECT_EQ(s.job(j)->queued, 6);
-  EXPECT_EQ(s.schema_version(), 3);
+  EXPECT_EQ(s.schema_version(), 4);
 }
 
 TEST_F(JobStoreTest, LeasesByPriorityThenAgeThenFrame) {
@@ -92,34 +92,43 @@ TEST_F(JobStoreTest, HeartbeatExtendsTheLease) {
 
 TEST_F(JobStoreTest, FailuresRetryThenFailWithTheLogAndBlockTheWorker) {
   JobStore s(db(), StoreOptions{60, 2});
-  const int64_t j = s.submit(spec({1, 2}, 8, 0, 50, 3), 0);
-  // w-bad fails frame 1 twice: it is then blocked for this job.
+  const int64_t j = s.submit(spec({1, 2, 3}, 8, 0, 50, 3), 0);
+  // w-bad fails two different tasks: it is then blocked for this job.
   auto l = s.lease("w-bad", 0);
   ASSERT_EQ(l->task.frame, 1);
   EXPECT_TRUE(s.fail(l->lease_id, "segfault in frame 1", 1));
+  EXPECT_FALSE(s.blocked(j, "w-bad"));
   l = s.lease("w-bad", 2);
-  ASSERT_EQ(l->task.frame, 1);
-  EXPECT_TRUE(s.fail(l->lease_id, "segfault in frame 1 again", 3));
+  ASSERT_EQ(l->task.frame, 2) << "a retry should go to a task this worker has not failed";
+  EXPECT_TRUE(s.fail(l->lease_id, "segfault in frame 2", 3));
   EXPECT_TRUE(s.blocked(j, "w-bad"));
+  EXPECT_EQ(s.blocked_workers(j), std::vector<std::string>{"w-bad"});
   EXPECT_FALSE(s.lease("w-bad", 4));
-  // Another worker gets the third and last attempt of frame 1, and fails it too.
+  // w-good fails frame 1 (attempt 2), renders 2 and 3, then fails frame 1 again
+  // (attempt 3 of 3): the task is failed with its last log, and a worker that
+  // failed one task twice is not blocked.
   l = s.lease("w-good", 5);
   ASSERT_EQ(l->task.frame, 1);
-  EXPECT_TRUE(s.fail(l->lease_id, "segfault, third time", 6));
+  EXPECT_TRUE(s.fail(l->lease_id, "segfault, second time", 6));
+  for (int frame : {2, 3}) {
+    l = s.lease("w-good", 7);
+    ASSERT_EQ(l->task.frame, frame);
+    EXPECT_TRUE(s.complete(l->lease_id, "ok", 8));
+  }
+  l = s.lease("w-good", 9);
+  ASSERT_EQ(l->task.frame, 1);
+  EXPECT_TRUE(s.fail(l->lease_id, "segfault, third time", 10));
+  EXPECT_FALSE(s.blocked(j, "w-good"));
   const auto tasks = s.tasks(j);
   EXPECT_EQ(tasks[0].state, TaskState::Failed);
   EXPECT_EQ(tasks[0].attempts, 3);
   EXPECT_EQ(tasks[0].log, "segfault, third time");
-  // The rest of the job completes.
-  l = s.lease("w-good", 7);
-  ASSERT_EQ(l->task.frame, 2);
-  EXPECT_TRUE(s.complete(l->lease_id, "ok", 8));
   EXPECT_TRUE(s.job(j)->finished());
   EXPECT_EQ(s.job(j)->failed, 1);
   // retry-failed requeues it and lifts the blocklist.
   EXPECT_EQ(s.retry_failed(j), 1);
   EXPECT_FALSE(s.blocked(j, "w-bad"));
-  EXPECT_TRUE(s.lease("w-bad", 9));
+  EXPECT_TRUE(s.lease("w-bad", 11));
 }
 
 TEST_F(JobStoreTest, CancelAndPauseStopRunningTasksAtTheNextHeartbeat) {
@@ -284,7 +293,7 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
 )sql");
   }
   JobStore s(db());
-  EXPECT_EQ(s.schema_version(), 3);
+  EXPECT_EQ(s.schema_version(), 4);
   EXPECT_EQ(s.job(1)->name, "old");
   EXPECT_TRUE(s.assets(1).empty());
   EXPECT_TRUE(s.frame(1, 1)->complete());

@@ -272,26 +272,26 @@ TEST_F(WorkerTest, SampleSplitRendersEveryRangeAsAPartial) {
 }
 
 TEST_F(WorkerTest, FailingRendererFailsTasksAndBlocklistsTheWorker) {
-  start(/*blocklist_threshold=*/3);
+  start(/*blocklist_threshold=*/2);
   // Not JSON: `vesper render` exits 2 with "invalid JSON at line ...".
   const std::string scene = put_blob("{\"format\": \"vesper-scene/1\", \"camera\": \n");
   const json created = submit(
-      {{"name", "broken"}, {"scene", scene}, {"frames", "1-2"}, {"spp", 4}, {"max_attempts", 2}});
-  ASSERT_EQ(created.at("task_count"), 2);
+      {{"name", "broken"}, {"scene", scene}, {"frames", "1-3"}, {"spp", 4}, {"max_attempts", 1}});
+  ASSERT_EQ(created.at("task_count"), 3);
 
   Worker worker(worker_config());
   EXPECT_EQ(worker.run(), 0);  // the worker survives its renders
-  EXPECT_EQ(worker.tasks_failed(), 3);
+  EXPECT_EQ(worker.tasks_failed(), 2);
   EXPECT_EQ(worker.tasks_completed(), 0);
 
   const json j = job(created.at("id"));
-  EXPECT_EQ(j.at("counts").at("failed"), 1) << j.dump();
+  EXPECT_EQ(j.at("counts").at("failed"), 2) << j.dump();
   EXPECT_EQ(j.at("counts").at("queued"), 1) << j.dump();  // left for other workers
   int failed_seen = 0;
   for (const auto& t : j.at("tasks")) {
     if (t.at("state") != "failed") continue;
     ++failed_seen;
-    EXPECT_EQ(t.at("attempts"), 2);
+    EXPECT_EQ(t.at("attempts"), 1);
     EXPECT_TRUE(t.at("has_log").get<bool>());
     const std::string id =
         t.at("id").is_string() ? t.at("id").get<std::string>() : t.at("id").dump();
@@ -302,9 +302,10 @@ TEST_F(WorkerTest, FailingRendererFailsTasksAndBlocklistsTheWorker) {
     EXPECT_NE(r->body.find("invalid JSON at line"), std::string::npos) << r->body;
     EXPECT_NE(r->body.find("exit code 2"), std::string::npos) << r->body;
   }
-  EXPECT_EQ(failed_seen, 1);
+  EXPECT_EQ(failed_seen, 2);
+  EXPECT_EQ(j.at("blocked_workers"), json::array({worker.worker_id()})) << j.dump();
 
-  // Three failures in the job: the worker is blocklisted, so the queued task
+  // Two failed tasks in the job: the worker is blocklisted, so the queued task
   // is not leased to it.
   auto r = client().Post("/api/v1/lease", wrk(), json{{"worker_id", worker.worker_id()}}.dump(),
                          "application/json");
