@@ -2,7 +2,9 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cstdio>
+#include <thread>
 
 #include "cli/commands.h"
 #include "cli/fetch.h"
@@ -36,7 +38,18 @@ std::string job_path(const JobCommandOptions& o) { return "/jobs/" + std::to_str
 FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesystem::path& dir) {
   const std::string base = "/jobs/" + std::to_string(job);
   const nlohmann::json j = client.get_json(base);
-  const nlohmann::json frames = client.get_json(base + "/frames");
+  // Frames whose tasks are all done may still be merging on the server: give
+  // the merges time (a merge reads and writes the frame once; seconds).
+  nlohmann::json frames;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  for (;;) {
+    frames = client.get_json(base + "/frames");
+    bool merging = false;
+    for (const auto& f : frames.at("frames"))
+      merging = merging || (f.at("state") == "pending" && f.at("done") == f.at("tasks"));
+    if (!merging || std::chrono::steady_clock::now() > deadline) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
   std::filesystem::create_directories(dir);
   FetchedFrames out;
   const std::string name = j.at("name").get<std::string>();

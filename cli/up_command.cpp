@@ -18,6 +18,7 @@
 #include "cli/submit.h"
 #include "compositor/comp_run.h"
 #include "compositor/recipe.h"
+#include "jobs/frame_range.h"
 #include "renderer/scene/scene_loader.h"
 #include "server/server.h"
 #include "worker/worker.h"
@@ -97,6 +98,18 @@ int run_up(const UpCommandOptions& o) {
   if (o.spp) request.spp = *o.spp;
   if (o.samples_per_task) request.samples_per_task = *o.samples_per_task;
   const int n_workers = std::max(1, o.workers.value_or(settings.up.workers));
+  // Fewer frames than workers: split each frame into sample ranges so every
+  // worker helps (the server merges them exactly), unless told otherwise.
+  if (!o.samples_per_task && settings.job.samples_per_task == 0) {
+    try {
+      const int frames = int(parse_frame_range(request.frames).size());
+      const int spp = request.spp > 0 ? request.spp : load_scene(request.scene).render.spp;
+      if (frames < n_workers && spp >= n_workers)
+        request.samples_per_task = (spp * frames + n_workers - 1) / n_workers;
+    } catch (const std::exception&) {
+      // Bad frames or scene: submit_job reports it properly below.
+    }
+  }
   const std::filesystem::path data_dir = expand_user(o.data_dir.value_or(settings.up.data_dir));
   const std::filesystem::path out_dir = expand_user(o.output_dir.value_or(settings.up.output_dir));
 

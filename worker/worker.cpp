@@ -15,6 +15,7 @@
 #include "jobs/child_process.h"
 #include "worker/file_hash.h"
 #include "worker/http_client.h"
+#include "worker/render_progress.h"
 #include "worker/task_dir.h"
 
 namespace fs = std::filesystem;
@@ -331,7 +332,8 @@ int Worker::run() {
       argv.push_back("--threads");
       argv.push_back(std::to_string(cfg.render_threads));
     }
-    argv.push_back("-q");
+    // Not -q: the render's plain progress lines ("render:  40% ...") on stderr
+    // feed the heartbeat's progress; they also give failure logs context.
     std::string cmdline;
     for (const auto& a : argv) cmdline += (cmdline.empty() ? "" : " ") + a;
 
@@ -352,6 +354,8 @@ int Worker::run() {
       double progress = 0.5;
       if (auto it = w.durations.find(duration_key); it != w.durations.end() && it->second > 0)
         progress = std::min(0.99, elapsed / it->second);
+      if (const auto reported = worker_detail::last_render_progress(child->stderr_tail()))
+        progress = *reported;
       const HttpResponse hb =
           w.http->post_json(std::string(kApi) + "/heartbeat",
                             json{{"lease_id", t.lease_id}, {"progress", progress}}.dump());
