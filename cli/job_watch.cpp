@@ -57,7 +57,7 @@ nlohmann::json wait_for_job(FarmClient& client, long long job, bool show_progres
       return j;
     }
     std::this_thread::sleep_for(delay);
-    delay = std::min(delay * 2, std::chrono::milliseconds(1000));
+    delay = std::min(delay * 2, std::chrono::milliseconds(500));
   }
 }
 

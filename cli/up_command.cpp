@@ -128,8 +128,7 @@ int run_up(const UpCommandOptions& o) {
     spdlog::error("server: {}", e.what());
     return 1;
   }
-  spdlog::info("farm: server {} (data {}), {} workers", server->url(), data_dir.string(),
-               n_workers);
+  spdlog::info("farm: {} worker{} on this machine", n_workers, n_workers == 1 ? "" : "s");
 
   // 2. Workers: threads here, each rendering in child processes; cores shared out.
   const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -162,7 +161,11 @@ int run_up(const UpCommandOptions& o) {
   auto stop_all = [&] {
     for (auto& w : workers) w->request_stop();
     for (auto& t : threads) t.join();
+    threads.clear();
     g_workers.clear();
+    // Their keep-alive connections close with them; otherwise the server's stop
+    // waits out the keep-alive timeout.
+    workers.clear();
     spdlog::set_level(level);
   };
 
@@ -213,7 +216,8 @@ int run_up(const UpCommandOptions& o) {
 
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::fprintf(stderr, "\nvesper up: %d workers, %.1f s\n", n_workers, seconds);
+  std::fprintf(stderr, "\nvesper up: %d worker%s, %.1f s\n", n_workers, n_workers == 1 ? "" : "s",
+               seconds);
   std::fprintf(stderr, "  frames:     %zu in %s\n", fetched.written.size(),
                std::filesystem::path(fetched.pattern).parent_path().string().c_str());
   for (const auto& p : fetched.written) std::printf("%s\n", p.string().c_str());

@@ -1,0 +1,104 @@
+// configs/farm.toml documents every farm setting: it must parse, set every key,
+// and equal the built-in defaults; bad files name the file, key and problem.
+#include "cli/farm_config.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace vesper::cli {
+namespace {
+
+bool operator==(const FarmServerSettings& a, const FarmServerSettings& b) {
+  return a.host == b.host && a.port == b.port && a.data_dir == b.data_dir &&
+         a.lease_seconds == b.lease_seconds && a.blocklist_threshold == b.blocklist_threshold &&
+         a.max_blob_mib == b.max_blob_mib && a.threads == b.threads;
+}
+bool operator==(const FarmWorkerSettings& a, const FarmWorkerSettings& b) {
+  return a.server == b.server && a.cache_dir == b.cache_dir &&
+         a.heartbeat_seconds == b.heartbeat_seconds && a.idle_backoff_min == b.idle_backoff_min &&
+         a.idle_backoff_max == b.idle_backoff_max && a.render_threads == b.render_threads &&
+         a.kill_grace_seconds == b.kill_grace_seconds;
+}
+bool operator==(const FarmJobSettings& a, const FarmJobSettings& b) {
+  return a.frames == b.frames && a.spp == b.spp && a.samples_per_task == b.samples_per_task &&
+         a.priority == b.priority && a.max_attempts == b.max_attempts;
+}
+bool operator==(const FarmUpSettings& a, const FarmUpSettings& b) {
+  return a.workers == b.workers && a.data_dir == b.data_dir && a.output_dir == b.output_dir;
+}
+
+const std::filesystem::path kShipped = std::string(VESPER_SOURCE_DIR) + "/configs/farm.toml";
+
+TEST(FarmConfig, ShippedFileEqualsTheBuiltInDefaults) {
+  const FarmSettings file = load_farm_settings(kShipped), defaults;
+  EXPECT_TRUE(file.server == defaults.server);
+  EXPECT_TRUE(file.worker == defaults.worker);
+  EXPECT_TRUE(file.job == defaults.job);
+  EXPECT_TRUE(file.up == defaults.up);
+}
+
+TEST(FarmConfig, ShippedFileSetsEveryKey) {
+  // Count `key = value` lines: one per setter (7 server, 7 worker, 5 job, 3 up).
+  std::ifstream in(kShipped);
+  int keys = 0;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != '#' && line[0] != '[' && line.find(" = ") != std::string::npos)
+      ++keys;
+  EXPECT_EQ(keys, 22);
+}
+
+class FarmConfigErrors : public ::testing::Test {
+ protected:
+  std::string error_of(const std::string& text) {
+    const auto p =
+        std::filesystem::temp_directory_path() / ("farm-" + std::to_string(::getpid()) + ".toml");
+    std::ofstream(p) << text;
+    try {
+      load_farm_settings(p);
+    } catch (const FarmConfigError& e) {
+      std::filesystem::remove(p);
+      return e.what();
+    }
+    std::filesystem::remove(p);
+    return "";
+  }
+};
+
+TEST_F(FarmConfigErrors, NameTheFileKeyAndProblem) {
+  EXPECT_NE(error_of("[server]\nlease = 3\n").find(".toml: server.lease: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of("[server]\nport = \"80\"\n").find("server.port: expected an integer"),
+            std::string::npos);
+  EXPECT_NE(error_of("[server]\nport = 70000\n")
+                .find("server.port: expected an integer in [0, "
+                      "65535], got 70000"),
+            std::string::npos);
+  EXPECT_NE(error_of("[servers]\n").find("[servers]: unknown section"), std::string::npos);
+  EXPECT_NE(error_of("[job]\nmax_attempts = 0\n").find("job.max_attempts"), std::string::npos);
+  EXPECT_NE(error_of("[server\n").find(".toml:1:"), std::string::npos);  // syntax: line:column
+  EXPECT_NE(error_of("[worker]\nidle_backoff_min = 9.0\n").find("idle_backoff_min"),
+            std::string::npos);
+  EXPECT_EQ(error_of("[server]\nport = 9000\n[worker]\nheartbeat_seconds = 1\n"), "");
+}
+
+TEST(FarmConfig, FileValuesOverrideDefaults) {
+  const auto p = std::filesystem::temp_directory_path() / "farm-override.toml";
+  std::ofstream(p) << "[server]\nport = 9000\nlease_seconds = 7.5\n[up]\nworkers = 4\n";
+  const FarmSettings s = load_farm_settings(p);
+  std::filesystem::remove(p);
+  EXPECT_EQ(s.server.port, 9000);
+  EXPECT_EQ(s.server.lease_seconds, 7.5);
+  EXPECT_EQ(s.up.workers, 4);
+  EXPECT_EQ(s.server.host, "127.0.0.1");  // untouched keys keep their defaults
+}
+
+TEST(FarmConfig, ExpandUser) {
+  ::setenv("HOME", "/home/artist", 1);
+  EXPECT_EQ(expand_user("~/farm"), std::filesystem::path("/home/artist/farm"));
+  EXPECT_EQ(expand_user("~"), std::filesystem::path("/home/artist/"));
+  EXPECT_EQ(expand_user("out/farm"), std::filesystem::path("out/farm"));
+}
+
+}  // namespace
+}  // namespace vesper::cli
