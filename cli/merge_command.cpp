@@ -7,12 +7,14 @@
 #include <filesystem>
 
 #include "cli/commands.h"
+#include "cli/parent_watch.h"
 #include "renderer/output/exr_io.h"
 #include "renderer/output/partial_io.h"
 
 namespace vesper::cli {
 
 int run_merge(const MergeCommandOptions& o) {
+  if (!die_with_parent()) return 1;
   const std::filesystem::path out_path(o.output);
   if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path())) {
     spdlog::error("{}: output directory does not exist", out_path.parent_path().string());

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "cli/commands.h"
+#include "cli/parent_watch.h"
 #include "cli/progress.h"
 #include "renderer/output/exr_io.h"
 #include "renderer/output/partial_io.h"
@@ -37,6 +38,7 @@ std::vector<Aov> parse_aovs(const std::string& list) {
 }  // namespace
 
 int run_render(const RenderCommandOptions& o) {
+  if (!die_with_parent()) return 1;
   RenderOptions ro;
   try {
     if (o.aovs) ro.aovs = parse_aovs(*o.aovs);

@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "cli/fetch.h"
 #include "cli/job_watch.h"
+#include "cli/parent_watch.h"
 #include "cli/submit.h"
 #include "compositor/comp_run.h"
 #include "compositor/recipe.h"
@@ -132,6 +133,7 @@ int run_up(const UpCommandOptions& o) {
 
   // 2. Workers: threads here, each rendering in child processes; cores shared out.
   const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+  export_parent_pid();  // renders and merges die with `vesper up` (parent_watch.h)
   std::vector<std::unique_ptr<Worker>> workers;
   for (int i = 0; i < n_workers; ++i) {
     WorkerConfig wc;

@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/farm_client.h"
 #include "cli/farm_config.h"
+#include "cli/parent_watch.h"
 #include "worker/worker.h"
 
 namespace vesper::cli {
@@ -51,6 +52,7 @@ int run_worker(const WorkerCommandOptions& o) {
   c.max_tasks = o.max_tasks;
   c.exit_when_idle = o.exit_when_idle;
 
+  export_parent_pid();  // its renders die with it (parent_watch.h)
   Worker worker(c);
   g_worker = &worker;
   struct sigaction sa {};
