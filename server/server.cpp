@@ -6,9 +6,13 @@
 #include <spdlog/spdlog.h>
 #include <sys/stat.h>
 
+#include <sys/socket.h>
+
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <condition_variable>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -138,6 +142,7 @@ struct Server::Impl {
   httplib::Server http;
   std::thread http_thread, reaper_thread;
   int bound_port = 0;
+  int listen_socket = -1;  // set by the socket options callback, before bind
   bool started = false, stopped = false;
   std::mutex stop_mutex;
   std::condition_variable stop_cv;
@@ -925,6 +930,14 @@ int Server::start() {
   s.http.set_tcp_nodelay(true);
   s.http.set_read_timeout(30);
   s.http.set_write_timeout(30);
+  // Not cpp-httplib's default options: those set SO_REUSEPORT, which lets a
+  // second server bind the same port and silently take half the requests.
+  // SO_REUSEADDR alone still allows a restart over TIME_WAIT connections.
+  s.http.set_socket_options([&s](int sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    s.listen_socket = sock;
+  });
   s.install_routes();
   if (s.config.port == 0) {
     s.bound_port = s.http.bind_to_any_port(s.config.host);
@@ -935,6 +948,11 @@ int Server::start() {
   if (s.bound_port <= 0)
     throw std::runtime_error("server: cannot bind " + s.config.host + ":" +
                              std::to_string(s.config.port));
+  // Debian's cpp-httplib is compiled with a listen backlog of 5: 50 workers
+  // connecting at once overflow it and wait 1 s for a SYN retry
+  // (vesper_farm_bench). listen() again on the bound socket raises it.
+  if (s.listen_socket >= 0 && ::listen(s.listen_socket, SOMAXCONN) != 0)
+    spdlog::warn("server: cannot raise the listen backlog: {}", std::strerror(errno));
   s.http_thread = std::thread([&s] { s.http.listen_after_bind(); });
   // stop() is a no-op until the accept loop runs: wait for it.
   for (int i = 0; i < 5000 && !s.http.is_running(); ++i)

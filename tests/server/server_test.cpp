@@ -121,6 +121,28 @@ class ServerTest : public ::testing::Test {
   int port_ = 0;
 };
 
+// Two servers must never share a port (SO_REUSEPORT would let the second one
+// silently take half the requests), and a restart on the port must work.
+TEST_F(ServerTest, ASecondServerOnTheSamePortFailsToStart) {
+  start();
+  ServerConfig other = config();
+  other.data_dir = dir_ / "other";
+  other.port = port_;
+  Server second(other);
+  EXPECT_THROW(second.start(), std::runtime_error);
+  // The first one still serves.
+  auto r = client().Get("/healthz");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  // ... and after it stops, a new server takes the port at once.
+  const int port = port_;
+  server_.reset();
+  ServerConfig again = config();
+  again.port = port;
+  start(again);
+  EXPECT_EQ(port_, port);
+}
+
 TEST_F(ServerTest, TokenFileIsPrivateAndReusedOnRestart) {
   start();
   const fs::path file = dir_ / "data" / "tokens.json";
