@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/farm_config.h"
+#include "cli/farm_setup.h"
 #include "server/server.h"
 
 namespace vesper::cli {
@@ -18,14 +19,10 @@ int run_server(const ServerCommandOptions& o) {
     spdlog::error("{}", e.what());
     return 2;
   }
-  ServerConfig c;
-  c.data_dir = expand_user(o.data_dir.value_or(settings.server.data_dir));
-  c.host = o.host.value_or(settings.server.host);
-  c.port = o.port.value_or(settings.server.port);
-  c.lease_seconds = settings.server.lease_seconds;
-  c.blocklist_threshold = settings.server.blocklist_threshold;
-  c.max_blob_bytes = std::size_t(settings.server.max_blob_mib) << 20;
-  c.threads = settings.server.threads;
+  ServerConfig c = server_config(settings);
+  if (o.data_dir) c.data_dir = expand_user(*o.data_dir);
+  if (o.host) c.host = *o.host;
+  if (o.port) c.port = *o.port;
 
   // Block the stop signals before any thread starts (threads inherit the
   // mask), then wait for one here: no work in a signal handler.

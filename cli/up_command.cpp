@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/farm_setup.h"
 #include "cli/fetch.h"
 #include "cli/job_watch.h"
 #include "cli/parent_watch.h"
@@ -33,12 +34,6 @@ std::vector<Worker*> g_workers;  // set before the handler is installed, cleared
 extern "C" void on_up_signal(int) {
   g_stop = true;
   for (Worker* w : g_workers) w->request_stop();  // async-signal-safe (atomic flags)
-}
-
-std::filesystem::path self_executable() {
-  std::error_code ec;
-  auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path("vesper") : p;
 }
 
 // The demo scene: ./scenes/night-room/scene.json, else the one beside the
@@ -115,12 +110,10 @@ int run_up(const UpCommandOptions& o) {
   const std::filesystem::path out_dir = expand_user(o.output_dir.value_or(settings.up.output_dir));
 
   // 1. The server, on a free loopback port so `up` never collides with a farm.
-  ServerConfig sc;
+  ServerConfig sc = server_config(settings);
   sc.data_dir = data_dir;
+  sc.host = "127.0.0.1";
   sc.port = 0;
-  sc.lease_seconds = settings.server.lease_seconds;
-  sc.blocklist_threshold = settings.server.blocklist_threshold;
-  sc.max_blob_bytes = std::size_t(settings.server.max_blob_mib) << 20;
   std::unique_ptr<Server> server;
   try {
     server = std::make_unique<Server>(sc);
@@ -136,25 +129,18 @@ int run_up(const UpCommandOptions& o) {
   export_parent_pid();  // renders and merges die with `vesper up` (parent_watch.h)
   std::vector<std::unique_ptr<Worker>> workers;
   for (int i = 0; i < n_workers; ++i) {
-    WorkerConfig wc;
+    WorkerConfig wc = worker_config(settings);
     wc.server_url = server->url();
     wc.token = server->worker_token();
     wc.name = fmt::format("up-{}", i + 1);
     wc.cache_dir = data_dir / "worker-cache";
-    wc.vesper_binary = self_executable();
-    wc.heartbeat_seconds = settings.worker.heartbeat_seconds;
-    wc.idle_backoff_min = 0.05;
+    wc.idle_backoff_min = 0.05;  // one machine: poll eagerly
     wc.idle_backoff_max = 0.5;
     wc.render_threads = std::max(1, cores / n_workers);
-    wc.kill_grace_seconds = settings.worker.kill_grace_seconds;
     workers.push_back(std::make_unique<Worker>(wc));
   }
   for (auto& w : workers) g_workers.push_back(w.get());
-  struct sigaction sa {};
-  sa.sa_handler = on_up_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  on_stop_signals(on_up_signal);
   // Worker chatter would break the progress bar; their warnings still show.
   const auto level = spdlog::get_level();
   spdlog::set_level(std::max(level, spdlog::level::warn));

@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/farm_client.h"
 #include "cli/farm_config.h"
+#include "cli/farm_setup.h"
 #include "cli/parent_watch.h"
 #include "worker/worker.h"
 
@@ -23,43 +24,30 @@ extern "C" void on_stop_signal(int) {
   if (g_worker) g_worker->request_stop();
 }
 
-std::filesystem::path self_executable() {
-  std::error_code ec;
-  auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path("vesper") : p;
-}
-
 }  // namespace
 
 int run_worker(const WorkerCommandOptions& o) {
   WorkerConfig c;
   try {
     const FarmSettings settings = load_farm_settings(o.farm.config);
+    c = worker_config(settings);
     c.server_url = resolve_server_url(settings, o.farm.server);
     c.token = resolve_token(settings, o.farm.token, TokenRole::Worker);
-    c.cache_dir = expand_user(o.cache_dir.value_or(settings.worker.cache_dir));
-    c.heartbeat_seconds = settings.worker.heartbeat_seconds;
-    c.idle_backoff_min = settings.worker.idle_backoff_min;
-    c.idle_backoff_max = settings.worker.idle_backoff_max;
-    c.render_threads = o.threads.value_or(settings.worker.render_threads);
-    c.kill_grace_seconds = settings.worker.kill_grace_seconds;
+    if (o.cache_dir) c.cache_dir = expand_user(*o.cache_dir);
+    if (o.threads) c.render_threads = *o.threads;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 2;
   }
   if (o.name) c.name = *o.name;
-  c.vesper_binary = o.renderer ? std::filesystem::path(*o.renderer) : self_executable();
+  if (o.renderer) c.vesper_binary = *o.renderer;
   c.max_tasks = o.max_tasks;
   c.exit_when_idle = o.exit_when_idle;
 
   export_parent_pid();  // its renders die with it (parent_watch.h)
   Worker worker(c);
   g_worker = &worker;
-  struct sigaction sa {};
-  sa.sa_handler = on_stop_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  on_stop_signals(on_stop_signal);
   spdlog::info("worker: pulling from {} (cache {})", c.server_url, c.cache_dir.string());
   const int rc = worker.run();
   g_worker = nullptr;

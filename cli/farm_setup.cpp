@@ -1,0 +1,45 @@
+#include "cli/farm_setup.h"
+
+#include <csignal>
+
+namespace vesper::cli {
+
+ServerConfig server_config(const FarmSettings& s) {
+  ServerConfig c;
+  c.data_dir = expand_user(s.server.data_dir);
+  c.host = s.server.host;
+  c.port = s.server.port;
+  c.lease_seconds = s.server.lease_seconds;
+  c.blocklist_threshold = s.server.blocklist_threshold;
+  c.max_blob_bytes = std::size_t(s.server.max_blob_mib) << 20;
+  c.threads = s.server.threads;
+  return c;
+}
+
+WorkerConfig worker_config(const FarmSettings& s) {
+  WorkerConfig c;
+  c.cache_dir = expand_user(s.worker.cache_dir);
+  c.vesper_binary = self_executable();
+  c.heartbeat_seconds = s.worker.heartbeat_seconds;
+  c.idle_backoff_min = s.worker.idle_backoff_min;
+  c.idle_backoff_max = s.worker.idle_backoff_max;
+  c.render_threads = s.worker.render_threads;
+  c.kill_grace_seconds = s.worker.kill_grace_seconds;
+  return c;
+}
+
+std::filesystem::path self_executable() {
+  std::error_code ec;
+  auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path("vesper") : p;
+}
+
+void on_stop_signals(void (*handler)(int)) {
+  struct sigaction sa {};
+  sa.sa_handler = handler;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+}  // namespace vesper::cli
