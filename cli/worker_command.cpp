@@ -40,7 +40,10 @@ int run_worker(const WorkerCommandOptions& o) {
     return 2;
   }
   if (o.name) c.name = *o.name;
-  if (o.renderer) c.vesper_binary = *o.renderer;
+  if (o.renderer) {
+    c.vesper_binary = *o.renderer;
+    c.reuse_results = false;  // a wrapper's hash does not pin what it runs
+  }
   c.max_tasks = o.max_tasks;
   c.exit_when_idle = o.exit_when_idle;
 

@@ -52,9 +52,10 @@ struct Task {
   int sample_begin = 0, sample_end = 0;
   TaskState state = TaskState::Queued;
   int attempts = 0;
-  std::string worker;  // current or last lease holder
-  std::string result;  // set when done
-  std::string log;     // tail of the last failure's log
+  std::string worker;       // current or last lease holder
+  std::string result;       // set when done
+  std::string log;          // tail of the last failure's log
+  int64_t reused_from = 0;  // done without rendering: the identical task whose result it took
 };
 
 struct Lease {

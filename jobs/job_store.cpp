@@ -1,5 +1,6 @@
 #include "jobs/job_store.h"
 
+#include <algorithm>
 #include <random>
 
 #include "jobs/sqlite_db.h"
@@ -86,7 +87,27 @@ CREATE TABLE worker_task_failures(
   job_id INTEGER NOT NULL, worker TEXT NOT NULL, task_id INTEGER NOT NULL,
   failures INTEGER NOT NULL, PRIMARY KEY(job_id, worker, task_id));
 )sql",
+    // 5: identical tasks are rendered once: a job's inputs key (scene, spp,
+    // assets), the renderer (its executable's sha256) that produced each
+    // result, and where a reused result came from.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN inputs_key TEXT NOT NULL DEFAULT '';
+ALTER TABLE tasks ADD COLUMN renderer TEXT NOT NULL DEFAULT '';
+ALTER TABLE tasks ADD COLUMN reused_from INTEGER;
+CREATE INDEX tasks_done_by_range ON tasks(frame, sample_begin, sample_end) WHERE state = 'done';
+)sql",
 };
+
+// What makes two tasks identical besides their frame and sample range: the
+// scene blob, the spp and the assets (name -> blob, in name order).
+std::string inputs_key(const JobSpec& spec) {
+  std::vector<std::string> assets;
+  for (const Asset& a : spec.assets) assets.push_back(a.name + "=" + a.blob);
+  std::sort(assets.begin(), assets.end());
+  std::string key = spec.scene + ";spp=" + std::to_string(spec.spp);
+  for (const auto& a : assets) key += ";" + a;
+  return key;
+}
 
 std::string new_lease_id() {
   thread_local std::mt19937_64 rng{std::random_device{}()};
@@ -100,7 +121,8 @@ std::string new_lease_id() {
 }
 
 constexpr const char* kTaskColumns =
-    "id, job_id, frame, sample_begin, sample_end, state, attempts, worker, result, log";
+    "id, job_id, frame, sample_begin, sample_end, state, attempts, worker, result, log, "
+    "reused_from";
 
 Task read_task(const sql::Stmt& s) {
   Task t;
@@ -114,6 +136,7 @@ Task read_task(const sql::Stmt& s) {
   t.worker = s.text(7);
   t.result = s.text(8);
   t.log = s.text(9);
+  t.reused_from = s.i64(10);  // NULL reads as 0
   return t;
 }
 
@@ -171,6 +194,13 @@ struct JobStore::Impl {
                      " FROM tasks WHERE lease_id = ?1 AND state = 'leased'")
                         .c_str());
     s.bind(1, lease_id);
+    if (!s.step()) return std::nullopt;
+    return read_task(s);
+  }
+
+  std::optional<Task> task(int64_t id) const {
+    sql::Stmt s(db, (std::string("SELECT ") + kTaskColumns + " FROM tasks WHERE id = ?1").c_str());
+    s.bind(1, id);
     if (!s.step()) return std::nullopt;
     return read_task(s);
   }
@@ -268,14 +298,15 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   auto& db = impl_->db;
   sql::Transaction tx(db);
   sql::Stmt(db,
-            "INSERT INTO jobs(name, scene, spp, priority, max_attempts, state, created) "
-            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6)")
+            "INSERT INTO jobs(name, scene, spp, priority, max_attempts, state, created, "
+            "inputs_key) VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7)")
       .bind(1, spec.name)
       .bind(2, spec.scene)
       .bind(3, int64_t(spec.spp))
       .bind(4, int64_t(spec.priority))
       .bind(5, int64_t(spec.max_attempts))
       .bind(6, now)
+      .bind(7, inputs_key(spec))
       .run();
   const int64_t job = sqlite3_last_insert_rowid(db.get());
   for (size_t i = 0; i < spec.assets.size(); ++i)
@@ -301,41 +332,76 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   return job;
 }
 
-std::optional<Lease> JobStore::lease(const std::string& worker, double now) {
+std::optional<Lease> JobStore::lease(const std::string& worker, double now,
+                                     const std::string& renderer, int* reused) {
   auto& db = impl_->db;
   sql::Transaction tx(db);
   impl_->expire(now);
-  sql::Stmt pick(db,
-                 "SELECT t.id, j.scene, j.spp FROM tasks t JOIN jobs j ON j.id = t.job_id "
-                 "WHERE t.state = 'queued' AND j.state = 'active' AND ("
-                 "  SELECT COUNT(*) FROM worker_task_failures f WHERE f.job_id = j.id AND "
-                 "f.worker = ?1) < ?2 "
-                 // A retry goes to a worker that has not failed this task, when there is one.
-                 "ORDER BY j.priority DESC, j.id, EXISTS(SELECT 1 FROM worker_task_failures g "
-                 "WHERE g.task_id = t.id AND g.worker = ?1), t.frame, t.sample_begin LIMIT 1");
-  pick.bind(1, worker).bind(2, int64_t(impl_->options.blocklist_threshold));
-  if (!pick.step()) {
-    tx.commit();  // expired leases were requeued
-    return std::nullopt;
+  if (reused) *reused = 0;
+  for (;;) {
+    sql::Stmt pick(db,
+                   "SELECT t.id, j.scene, j.spp FROM tasks t JOIN jobs j ON j.id = t.job_id "
+                   "WHERE t.state = 'queued' AND j.state = 'active' AND ("
+                   "  SELECT COUNT(*) FROM worker_task_failures f WHERE f.job_id = j.id AND "
+                   "f.worker = ?1) < ?2 "
+                   // A retry goes to a worker that has not failed this task, when there is one.
+                   "ORDER BY j.priority DESC, j.id, EXISTS(SELECT 1 FROM worker_task_failures g "
+                   "WHERE g.task_id = t.id AND g.worker = ?1), t.frame, t.sample_begin LIMIT 1");
+    pick.bind(1, worker).bind(2, int64_t(impl_->options.blocklist_threshold));
+    if (!pick.step()) {
+      tx.commit();  // expired leases were requeued
+      return std::nullopt;
+    }
+    const int64_t task_id = pick.i64(0);
+    // The same task (inputs, frame, samples) already rendered by this renderer:
+    // reuse its result instead of rendering it again, and look further.
+    if (!renderer.empty()) {
+      sql::Stmt same(db,
+                     "SELECT d.id, d.result FROM tasks t JOIN jobs j ON j.id = t.job_id "
+                     "JOIN tasks d ON d.state = 'done' AND d.frame = t.frame AND "
+                     "d.sample_begin = t.sample_begin AND d.sample_end = t.sample_end AND "
+                     "d.renderer = ?2 AND d.result <> '' AND d.id <> t.id "
+                     "JOIN jobs dj ON dj.id = d.job_id AND dj.inputs_key = j.inputs_key "
+                     "WHERE t.id = ?1 AND j.inputs_key <> '' ORDER BY d.id LIMIT 1");
+      same.bind(1, task_id).bind(2, renderer);
+      if (same.step()) {
+        const int64_t source = same.i64(0);
+        const std::string result = same.text(1);
+        sql::Stmt(db,
+                  "UPDATE tasks SET state = 'done', result = ?2, renderer = ?3, reused_from = ?4 "
+                  "WHERE id = ?1")
+            .bind(1, task_id)
+            .bind(2, result)
+            .bind(3, renderer)
+            .bind(4, source)
+            .run();
+        const Task t = *impl_->task(task_id);
+        const auto frame = impl_->frames(t.job_id, t.frame);
+        if (frame.size() == 1 && frame[0].tasks == 1 && frame[0].complete())
+          impl_->record_output(t.job_id, t.frame, result, now);
+        if (reused) ++*reused;
+        continue;
+      }
+    }
+    Lease lease;
+    lease.scene = pick.text(1);
+    lease.spp = int(pick.i64(2));
+    lease.lease_id = new_lease_id();
+    lease.expiry = now + impl_->options.lease_seconds;
+    sql::Stmt(db,
+              "UPDATE tasks SET state = 'leased', lease_id = ?2, worker = ?3, lease_expiry = ?4, "
+              "renderer = ?5 WHERE id = ?1")
+        .bind(1, task_id)
+        .bind(2, lease.lease_id)
+        .bind(3, worker)
+        .bind(4, lease.expiry)
+        .bind(5, renderer)
+        .run();
+    lease.task = *impl_->leased_task(lease.lease_id);
+    lease.assets = impl_->assets(lease.task.job_id);
+    tx.commit();
+    return lease;
   }
-  Lease lease;
-  const int64_t task_id = pick.i64(0);
-  lease.scene = pick.text(1);
-  lease.spp = int(pick.i64(2));
-  lease.lease_id = new_lease_id();
-  lease.expiry = now + impl_->options.lease_seconds;
-  sql::Stmt(db,
-            "UPDATE tasks SET state = 'leased', lease_id = ?2, worker = ?3, lease_expiry = ?4 "
-            "WHERE id = ?1")
-      .bind(1, task_id)
-      .bind(2, lease.lease_id)
-      .bind(3, worker)
-      .bind(4, lease.expiry)
-      .run();
-  lease.task = *impl_->leased_task(lease.lease_id);
-  lease.assets = impl_->assets(lease.task.job_id);
-  tx.commit();
-  return lease;
 }
 
 HeartbeatAnswer JobStore::heartbeat(const std::string& lease_id, double now) {

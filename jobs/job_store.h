@@ -44,7 +44,14 @@ class JobStore {
   // Requeues expired leases, then leases the best queued task this worker is
   // not blocked for (highest priority, oldest job, tasks this worker has not
   // failed before those it has, lowest frame first).
-  std::optional<Lease> lease(const std::string& worker, double now);
+  //
+  // Identical tasks are rendered once: a queued task whose inputs (scene blob,
+  // spp, assets), frame and sample range equal those of a task already done by
+  // the same `renderer` (an opaque id, e.g. the renderer executable's sha256;
+  // empty = never reuse) is completed with that result instead of being
+  // leased (`reused`, if given, counts them), and the next task is looked at.
+  std::optional<Lease> lease(const std::string& worker, double now,
+                             const std::string& renderer = "", int* reused = nullptr);
   HeartbeatAnswer heartbeat(const std::string& lease_id, double now);
   // Both refuse (return false) a lease that is no longer current: expired,
   // re-leased, canceled. Committed results are never touched by stale calls.

@@ -19,6 +19,11 @@ std::string prometheus_text(const MetricsSnapshot& m) {
   line("# TYPE vesper_leases_granted_total counter");
   line("vesper_leases_granted_total " + std::to_string(m.leases_granted));
   line(
+      "# HELP vesper_tasks_reused_total Tasks completed with the result of an identical task "
+      "(not rendered again) since the server started.");
+  line("# TYPE vesper_tasks_reused_total counter");
+  line("vesper_tasks_reused_total " + std::to_string(m.tasks_reused));
+  line(
       "# HELP vesper_http_requests_total HTTP requests answered since the server started, by "
       "status code.");
   line("# TYPE vesper_http_requests_total counter");

@@ -59,16 +59,18 @@ json summary_json(const JobSummary& j) {
 }
 
 json task_json(const Task& t) {
-  return {{"id", t.id},
-          {"job_id", t.job_id},
-          {"frame", t.frame},
-          {"sample_begin", t.sample_begin},
-          {"sample_end", t.sample_end},
-          {"state", to_string(t.state)},
-          {"attempts", t.attempts},
-          {"worker", t.worker},
-          {"result", t.result},
-          {"has_log", !t.log.empty()}};
+  json j{{"id", t.id},
+         {"job_id", t.job_id},
+         {"frame", t.frame},
+         {"sample_begin", t.sample_begin},
+         {"sample_end", t.sample_end},
+         {"state", to_string(t.state)},
+         {"attempts", t.attempts},
+         {"worker", t.worker},
+         {"result", t.result},
+         {"has_log", !t.log.empty()}};
+  if (t.reused_from) j["reused_from"] = t.reused_from;
+  return j;
 }
 
 void send_json(httplib::Response& res, int status, const json& body) {
@@ -153,6 +155,7 @@ struct Server::Impl {
 
   // Metrics since start
   std::atomic<uint64_t> leases_granted{0};
+  std::atomic<uint64_t> reused_tasks{0};
   std::mutex metrics_mutex;
   std::map<int, uint64_t> http_codes;
 
@@ -433,8 +436,13 @@ struct Server::Impl {
 
   void lease(const httplib::Request& req, httplib::Response& res) {
     const json body = body_of(req);
-    const JsonObject o(body, "", {"worker_id"});
+    const JsonObject o(body, "", {"worker_id", "renderer"});
     const std::string worker = o.string("worker_id");
+    // The worker's renderer identity (sha256 of its executable): identical
+    // tasks done by the same renderer are not rendered again.
+    const std::string renderer = o.opt_string("renderer").value_or("");
+    if (!renderer.empty() && !is_sha256_hex(renderer))
+      throw ApiError(400, "expected the renderer's sha256 (64 lower-case hex digits)", "/renderer");
     const double t = now();
     if (!workers.touch(worker, t))
       throw ApiError(404,
@@ -442,9 +450,14 @@ struct Server::Impl {
                          "/workers/register)",
                      "/worker_id");
     std::optional<Lease> l;
+    int reused = 0;
     {
       std::lock_guard lock(store_mutex);
-      l = store->lease(worker, t);
+      l = store->lease(worker, t, renderer, &reused);
+    }
+    if (reused > 0) {
+      reused_tasks += reused;
+      wake_merger();  // reused tasks may have finished frames of several tasks
     }
     if (!l) {
       res.status = 204;
@@ -819,6 +832,7 @@ struct Server::Impl {
     }
     m.workers = int64_t(workers.list().size());
     m.leases_granted = leases_granted.load();
+    m.tasks_reused = reused_tasks.load();
     {
       std::lock_guard lock(metrics_mutex);
       m.http_requests_by_code = http_codes;

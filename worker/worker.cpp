@@ -70,6 +70,9 @@ struct Worker::Impl {
   // Unique per Worker, so that several workers (threads or processes) can
   // share one cache dir without their temp files colliding.
   std::string instance;
+  // sha256 of the renderer executable: the server reuses results of identical
+  // tasks only between workers with the very same renderer build.
+  std::string renderer_id;
 
   explicit Impl(WorkerConfig c) : cfg(std::move(c)) {
     char buf[17];
@@ -154,6 +157,7 @@ int Worker::run() {
     return 1;
   }
   if (cfg.name.empty()) cfg.name = hostname();
+  if (cfg.reuse_results) w.renderer_id = worker_detail::sha256_file(cfg.vesper_binary).value_or("");
   if (cfg.cache_dir.empty()) cfg.cache_dir = fs::temp_directory_path() / "vesper-worker-cache";
   std::error_code ec;
   fs::create_directories(cfg.cache_dir / "tmp", ec);
@@ -206,8 +210,11 @@ int Worker::run() {
   for (;;) {
     if (stop_.load()) return 0;
     if (cfg.max_tasks >= 0 && processed >= cfg.max_tasks) return 0;
-    const HttpResponse r =
-        w.http->post_json(std::string(kApi) + "/lease", json{{"worker_id", worker_id()}}.dump());
+    const HttpResponse r = w.http->post_json(
+        std::string(kApi) + "/lease",
+        (w.renderer_id.empty() ? json{{"worker_id", worker_id()}}
+                               : json{{"worker_id", worker_id()}, {"renderer", w.renderer_id}})
+            .dump());
     if (r.status == 204) {
       if (cfg.exit_when_idle) return 0;
       if (!backoff_sleep()) return 0;

@@ -25,6 +25,11 @@ struct WorkerConfig {
   bool exit_when_idle = false;  // return 0 at the first "no work" answer
   int render_threads = 0;       // --threads for the child render; 0 = renderer default (all cores)
   double kill_grace_seconds = 2;  // SIGTERM → SIGKILL delay when a render is dropped
+  // Send the renderer's sha256 with each lease, so the server may complete a
+  // task with the result of an identical one this same renderer build already
+  // rendered. Off for a renderer whose output the file's hash does not pin
+  // (a wrapper script that runs something else).
+  bool reuse_results = true;
 };
 
 class Worker {

@@ -209,6 +209,30 @@ TEST_F(FarmTest, CrashingRenderFailsItsTaskAndBlocklistsTheBrokenWorker) {
   EXPECT_NE(status.out.find("1 failed"), std::string::npos) << status.out;
 }
 
+// The same scene submitted again: its tasks are done at once with the first
+// job's results (same inputs, same renderer build), nothing is rendered twice.
+TEST_F(FarmTest, ResubmittedSceneIsNotRenderedAgain) {
+  const auto config = write_config(10);
+  const auto scene = write_scene(32, 24, 4);
+  start_server(config);
+  start_worker("w1", config);
+  const long long first = submit(scene.string() + " --frames 1-2 --name first");
+  ASSERT_EQ(wait_finished(first, 60).at("counts").at("done"), 2);
+  const long long second = submit(scene.string() + " --frames 1-3 --name second");
+  const auto j = wait_finished(second, 60);
+  ASSERT_EQ(j.at("counts").at("done"), 3) << j.dump();
+  EXPECT_EQ(count(worker_log("w1"), "): leased"), 3) << worker_log("w1");
+  const auto f = job(first);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(j.at("tasks").at(i).at("reused_from"), f.at("tasks").at(i).at("id"));
+    EXPECT_EQ(j.at("tasks").at(i).at("result"), f.at("tasks").at(i).at("result"));
+  }
+  EXPECT_FALSE(j.at("tasks").at(2).contains("reused_from"));
+  const RunResult fetched = farm(fmt::format("fetch {} -o {}", second, (dir_ / "frames").string()));
+  EXPECT_EQ(fetched.exit_code, 0) << fetched.err;
+  EXPECT_EQ(count(fetched.out, ".exr"), 3) << fetched.out;
+}
+
 TEST_F(FarmTest, SubmitErrorsNameTheProblem) {
   const auto config = write_config(10);
   const auto scene = write_scene(16, 16, 1);

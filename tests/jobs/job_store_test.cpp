@@ -44,7 +44,7 @@ TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {
   EXPECT_EQ(tasks[2].sample_end, 10);  // the last range is short
   EXPECT_EQ(tasks[3].frame, 2);
   EXPECT_EQ(s.job(j)->queued, 6);
-  EXPECT_EQ(s.schema_version(), 4);
+  EXPECT_EQ(s.schema_version(), 5);
 }
 
 TEST_F(JobStoreTest, LeasesByPriorityThenAgeThenFrame) {
@@ -129,6 +129,60 @@ TEST_F(JobStoreTest, FailuresRetryThenFailWithTheLogAndBlockTheWorker) {
   EXPECT_EQ(s.retry_failed(j), 1);
   EXPECT_FALSE(s.blocked(j, "w-bad"));
   EXPECT_TRUE(s.lease("w-bad", 11));
+}
+
+TEST_F(JobStoreTest, IdenticalTasksAreRenderedOnceByTheSameRenderer) {
+  JobStore s(db(), StoreOptions{60, 3});
+  JobSpec a = spec({1, 2}, 8);
+  a.assets = {{"assets/cube.obj", std::string(64, 'c')}};
+  const int64_t first = s.submit(a, 0);
+  for (int i = 0; i < 2; ++i) {
+    const auto l = s.lease("w", 1, "r1");
+    ASSERT_TRUE(l);
+    EXPECT_TRUE(s.complete(l->lease_id, "result-" + std::to_string(l->task.frame), 2));
+  }
+  // The same inputs again (assets in another order would be the same too):
+  // frame 1 and 2 are done at once with the first job's results; frame 3 is new.
+  JobSpec b = a;
+  b.frames = {1, 2, 3};
+  const int64_t second = s.submit(b, 3);
+  int reused = -1;
+  const auto l = s.lease("w", 4, "r1", &reused);
+  ASSERT_TRUE(l);
+  EXPECT_EQ(reused, 2);
+  EXPECT_EQ(l->task.frame, 3);
+  const auto tasks = s.tasks(second);
+  EXPECT_EQ(tasks[0].state, TaskState::Done);
+  EXPECT_EQ(tasks[0].result, "result-1");
+  EXPECT_EQ(tasks[1].result, "result-2");
+  EXPECT_EQ(tasks[0].reused_from, s.tasks(first)[0].id);
+  EXPECT_EQ(tasks[2].reused_from, 0);
+
+  // Another renderer, other spp, another asset or no renderer id: rendered again.
+  JobSpec c = a;
+  c.assets[0].blob = std::string(64, 'd');
+  const int64_t other_asset = s.submit(c, 5);
+  JobSpec d = a;
+  d.spp = 16;
+  const int64_t other_spp = s.submit(d, 5);
+  const int64_t other_renderer = s.submit(a, 5);
+  for (const int64_t job : {other_asset, other_spp}) {
+    const auto m = s.lease("w", 6, "r1", &reused);
+    ASSERT_TRUE(m);
+    EXPECT_EQ(m->task.job_id, job);
+    EXPECT_EQ(reused, 0);
+    EXPECT_TRUE(s.complete(m->lease_id, "x", 7));
+    const auto n = s.lease("w", 6, "r1");
+    EXPECT_TRUE(s.complete(n->lease_id, "x", 7));
+  }
+  const auto m = s.lease("w", 8, "r2", &reused);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->task.job_id, other_renderer);
+  EXPECT_EQ(reused, 0);
+  const auto n = s.lease("w", 8, "", &reused);
+  ASSERT_TRUE(n);
+  EXPECT_EQ(n->task.job_id, other_renderer);
+  EXPECT_EQ(reused, 0);
 }
 
 TEST_F(JobStoreTest, CancelAndPauseStopRunningTasksAtTheNextHeartbeat) {
@@ -293,7 +347,7 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
 )sql");
   }
   JobStore s(db());
-  EXPECT_EQ(s.schema_version(), 4);
+  EXPECT_EQ(s.schema_version(), 5);
   EXPECT_EQ(s.job(1)->name, "old");
   EXPECT_TRUE(s.assets(1).empty());
   EXPECT_TRUE(s.frame(1, 1)->complete());

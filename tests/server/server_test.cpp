@@ -322,6 +322,34 @@ TEST_F(ServerTest, DryRunValidatesAndCreatesNothing) {
   EXPECT_EQ(json::parse(r->body).at("path"), "/frames");
 }
 
+// Leases carry the worker's renderer id (sha256 of its executable); an
+// identical task already done by that renderer is completed, not leased.
+TEST_F(ServerTest, LeaseWithARendererIdReusesIdenticalResults) {
+  start();
+  const std::string w = register_worker("box-1");
+  auto bad = post("/lease", {{"worker_id", w}, {"renderer", "../x"}}, wrk());
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400);
+  EXPECT_EQ(json::parse(bad->body).at("path"), "/renderer");
+
+  const std::string renderer(64, 'a');
+  const int64_t first = submit(1);
+  const json l = post_ok("/lease", {{"worker_id", w}, {"renderer", renderer}}, wrk());
+  const std::string result = put_blob("the frame");
+  post_ok("/complete", {{"lease_id", l.at("lease_id")}, {"result", result}}, wrk());
+  const int64_t second = submit(1);  // same scene blob, frames, spp
+  auto none = post("/lease", {{"worker_id", w}, {"renderer", renderer}}, wrk());
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->status, 204) << "the identical task should not be leased";
+  const json j = get_ok("/jobs/" + std::to_string(second));
+  EXPECT_EQ(j.at("counts").at("done"), 1);
+  EXPECT_EQ(j.at("tasks").at(0).at("result"), result);
+  EXPECT_EQ(j.at("tasks").at(0).at("reused_from"),
+            get_ok("/jobs/" + std::to_string(first)).at("tasks").at(0).at("id"));
+  auto m = client().Get("/metrics", wrk());
+  EXPECT_NE(m->body.find("vesper_tasks_reused_total 1"), std::string::npos) << m->body;
+}
+
 TEST_F(ServerTest, FullWorkerProtocol) {
   start();
   const int64_t job = submit(2, 8, 4);  // 2 frames x 2 sample ranges
