@@ -19,6 +19,12 @@ std::string describe_job(const nlohmann::json& j) {
                   std::to_string(j.at("total").get<int>()) + " tasks done";
   for (const char* k : {"leased", "queued", "failed", "paused", "canceled"})
     if (c.at(k).get<int>() > 0) s += ", " + std::to_string(c.at(k).get<int>()) + " " + k;
+  int reused = 0;
+  for (const auto& t : j.value("tasks", nlohmann::json::array()))
+    reused += t.contains("reused_from");
+  if (reused > 0)
+    s += " (" + std::to_string(reused) +
+         " reused from identical tasks done before, not rendered again)";
   return s;
 }
 
