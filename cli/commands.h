@@ -128,7 +128,7 @@ struct SubmitCommandOptions {
 };
 int run_submit(const SubmitCommandOptions& options);
 
-// vesper status|cancel|retry|logs|fetch.
+// vesper status|cancel|pause|resume|retry|logs|fetch|workers.
 struct JobCommandOptions {
   FarmOptions farm;
   std::optional<long long> job;
@@ -137,6 +137,9 @@ struct JobCommandOptions {
 };
 int run_status(const JobCommandOptions& options);
 int run_cancel(const JobCommandOptions& options);
+int run_pause(const JobCommandOptions& options);
+int run_resume(const JobCommandOptions& options);
+int run_workers(const JobCommandOptions& options);
 int run_retry(const JobCommandOptions& options);
 int run_logs(const JobCommandOptions& options);
 int run_fetch(const JobCommandOptions& options);

@@ -33,6 +33,15 @@ int with_client(const JobCommandOptions& o, Body&& body) {
 
 std::string job_path(const JobCommandOptions& o) { return "/jobs/" + std::to_string(*o.job); }
 
+// worker id -> name, for tables people read.
+std::map<std::string, std::string> worker_names(FarmClient& c) {
+  std::map<std::string, std::string> names;
+  const nlohmann::json all = c.get_json("/workers");  // not a temporary in the range-for
+  for (const auto& w : all.at("workers"))
+    names[w.at("worker_id").get<std::string>()] = w.at("name").get<std::string>();
+  return names;
+}
+
 }  // namespace
 
 FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesystem::path& dir) {
@@ -92,6 +101,13 @@ int run_status(const JobCommandOptions& o) {
       return 0;
     }
     std::printf("%s\n", describe_job(j).c_str());
+    const auto names = worker_names(c);
+    auto name_of = [&](const std::string& id) {
+      const auto it = names.find(id);
+      return it == names.end() ? id : it->second;
+    };
+    for (const auto& b : j.value("blocked_workers", nlohmann::json::array()))
+      std::printf("blocked for this job: %s\n", name_of(b.get<std::string>()).c_str());
     std::printf("%8s %6s %13s %9s %8s  %s\n", "task", "frame", "samples", "state", "attempts",
                 "worker");
     for (const auto& t : j.at("tasks")) {
@@ -102,16 +118,46 @@ int run_status(const JobCommandOptions& o) {
           "%8lld %6d %13s %9s %8d  %s\n", t.at("id").get<long long>(), t.at("frame").get<int>(),
           fmt::format("[{}, {})", t.at("sample_begin").get<int>(), t.at("sample_end").get<int>())
               .c_str(),
-          state.c_str(), t.at("attempts").get<int>(), t.at("worker").get<std::string>().c_str());
+          state.c_str(), t.at("attempts").get<int>(),
+          t.contains("reused_from")
+              ? fmt::format("(reused task {})", t.at("reused_from").get<long long>()).c_str()
+              : name_of(t.at("worker").get<std::string>()).c_str());
     }
     return 0;
   });
 }
 
-int run_cancel(const JobCommandOptions& o) {
+namespace {
+int job_action(const JobCommandOptions& o, const char* action, const char* done) {
   return with_client(o, [&](FarmClient& c) {
-    const nlohmann::json a = c.post_json(job_path(o) + "/cancel", nlohmann::json::object());
-    spdlog::info("canceled: {}", describe_job(a.at("job")));
+    const nlohmann::json a = c.post_json(job_path(o) + "/" + action, nlohmann::json::object());
+    spdlog::info("{}: {}", done, describe_job(a.at("job")));
+    return 0;
+  });
+}
+
+}  // namespace
+
+int run_cancel(const JobCommandOptions& o) { return job_action(o, "cancel", "canceled"); }
+int run_pause(const JobCommandOptions& o) { return job_action(o, "pause", "paused"); }
+int run_resume(const JobCommandOptions& o) { return job_action(o, "resume", "resumed"); }
+
+int run_workers(const JobCommandOptions& o) {
+  return with_client(o, [&](FarmClient& c) {
+    const nlohmann::json all = c.get_json("/workers");
+    if (o.json) {
+      std::printf("%s\n", all.dump(2).c_str());
+      return 0;
+    }
+    const double now = all.value("now", 0.0);
+    if (all.at("workers").empty())
+      std::printf("no workers\n");
+    else
+      std::printf("%-24s %-34s %12s %7s\n", "name", "worker id", "last seen", "leases");
+    for (const auto& w : all.at("workers"))
+      std::printf("%-24s %-34s %10.0fs ago %7s\n", w.at("name").get<std::string>().c_str(),
+                  w.at("worker_id").get<std::string>().c_str(),
+                  now - w.at("last_seen").get<double>(), w.at("leases").dump().c_str());
     return 0;
   });
 }

@@ -174,6 +174,11 @@ int main(int argc, char** argv) {
   auto* st = add_job("status", "Jobs on the farm, or one job's tasks", false);
   st->add_flag("--json", job.json, "Print the server's JSON");
   auto* cn = add_job("cancel", "Cancel a job (running tasks stop at their next heartbeat)", true);
+  auto* pa = add_job("pause", "Pause a job (running tasks stop at their next heartbeat)", true);
+  auto* re = add_job("resume", "Resume a paused job", true);
+  auto* wl = app.add_subcommand("workers", "Workers registered with the farm, and what they run");
+  add_farm(wl, job.farm, true);
+  wl->add_flag("--json", job.json, "Print the server's JSON");
   auto* rt = add_job("retry", "Requeue a job's failed tasks (and clear its blocklist)", true);
   auto* lg = add_job("logs", "Failure logs of a job's tasks", true);
   auto* fe = add_job("fetch", "Download a job's finished frames (merged per frame)", true);
@@ -211,6 +216,9 @@ int main(int argc, char** argv) {
     if (st->parsed()) return vesper::cli::run_status(job);
     if (cn->parsed()) return vesper::cli::run_cancel(job);
     if (rt->parsed()) return vesper::cli::run_retry(job);
+    if (pa->parsed()) return vesper::cli::run_pause(job);
+    if (re->parsed()) return vesper::cli::run_resume(job);
+    if (wl->parsed()) return vesper::cli::run_workers(job);
     if (lg->parsed()) return vesper::cli::run_logs(job);
     if (fe->parsed()) return vesper::cli::run_fetch(job);
     if (u->parsed()) return vesper::cli::run_up(up);

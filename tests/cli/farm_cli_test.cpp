@@ -233,6 +233,32 @@ TEST_F(FarmTest, ResubmittedSceneIsNotRenderedAgain) {
   EXPECT_EQ(count(fetched.out, ".exr"), 3) << fetched.out;
 }
 
+// Pause stops the running render at its next heartbeat; resume finishes the
+// job; `vesper workers` and `vesper status` name the workers.
+TEST_F(FarmTest, PauseResumeAndWorkersFromTheCli) {
+  const auto config = write_config(10);
+  const auto scene = write_scene(48, 36, 800);
+  start_server(config);
+  start_worker("w1", config);
+  const long long id = submit(scene.string() + " --frames 1-2 --name pause");
+  wait_job(id, 60, [](const nlohmann::json& j) { return j.at("counts").at("leased") == 1; });
+  const RunResult p = farm(fmt::format("pause {}", id));
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const auto paused = wait_job(id, 30, [](const nlohmann::json& j) {
+    return j.at("counts").at("paused") == 2 && j.at("state") == "paused";
+  });
+  EXPECT_EQ(paused.at("counts").at("leased"), 0) << paused.dump();
+  const RunResult w = farm("workers");
+  EXPECT_EQ(w.exit_code, 0) << w.err;
+  EXPECT_NE(w.out.find("w1"), std::string::npos) << w.out;
+  ASSERT_EQ(farm(fmt::format("resume {}", id)).exit_code, 0);
+  EXPECT_EQ(wait_finished(id, 120).at("counts").at("done"), 2);
+  const RunResult st = farm(fmt::format("status {}", id));
+  EXPECT_EQ(st.exit_code, 0) << st.err;
+  EXPECT_EQ(count(st.out, " w1"), 2) << st.out;
+  EXPECT_NE(farm("pause 999").err.find("no job 999"), std::string::npos);
+}
+
 TEST_F(FarmTest, SubmitErrorsNameTheProblem) {
   const auto config = write_config(10);
   const auto scene = write_scene(16, 16, 1);
