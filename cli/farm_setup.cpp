@@ -1,5 +1,8 @@
 #include "cli/farm_setup.h"
 
+#include <unistd.h>
+
+#include <atomic>
 #include <csignal>
 
 namespace vesper::cli {
@@ -32,6 +35,19 @@ std::filesystem::path self_executable() {
   std::error_code ec;
   auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::filesystem::path("vesper") : p;
+}
+
+void exit_on_second_signal() {
+  static std::atomic<int> signals{0};  // lock-free: safe in a signal handler
+  if (signals.fetch_add(1) == 0) {
+    static const char msg[] =
+        "\nvesper: stopping after the current render (again to stop at once)\n";
+    [[maybe_unused]] auto n = ::write(2, msg, sizeof msg - 1);
+    return;
+  }
+  static const char msg[] = "\nvesper: stopped at once; running leases will expire\n";
+  [[maybe_unused]] auto n = ::write(2, msg, sizeof msg - 1);
+  ::_exit(130);
 }
 
 void on_stop_signals(void (*handler)(int)) {

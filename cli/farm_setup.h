@@ -17,5 +17,10 @@ WorkerConfig worker_config(const FarmSettings& settings);
 std::filesystem::path self_executable();
 // Installs `handler` for SIGINT and SIGTERM (it must be async-signal-safe).
 void on_stop_signals(void (*handler)(int));
+// For those handlers: the first stop signal is a graceful stop (the handler's
+// job); a second one ends the process at once — its renders die with it
+// (parent_watch.h) and their leases expire on the server. Returns normally
+// on the first signal only.
+void exit_on_second_signal();
 
 }  // namespace vesper::cli

@@ -32,6 +32,7 @@ std::atomic<bool> g_stop{false};
 std::vector<Worker*> g_workers;  // set before the handler is installed, cleared after
 
 extern "C" void on_up_signal(int) {
+  exit_on_second_signal();
   g_stop = true;
   for (Worker* w : g_workers) w->request_stop();  // async-signal-safe (atomic flags)
 }
@@ -163,6 +164,18 @@ int run_up(const UpCommandOptions& o) {
   nlohmann::json final_state;
   try {
     FarmClient client(server->url(), server->submitter_token());
+    // An interrupted earlier `vesper up` may have left unfinished jobs here:
+    // they would take the workers first. Its finished work stays (and is
+    // reused where the inputs are the same).
+    const nlohmann::json previous = client.get_json("/jobs");
+    for (const auto& j : previous.at("jobs"))
+      if (!j.at("finished").get<bool>() && j.at("state") != "canceled") {
+        client.post_json("/jobs/" + std::to_string(j.at("id").get<long long>()) + "/cancel",
+                         nlohmann::json::object());
+        spdlog::warn("canceled job {} '{}' left unfinished by an earlier `vesper up` in {}",
+                     j.at("id").get<long long>(), j.at("name").get<std::string>(),
+                     data_dir.string());
+      }
     const Submitted s = submit_job(client, request);
     spdlog::set_level(level);
     spdlog::info("submitted job {} '{}': frames {}, {} tasks", s.id, request.name, request.frames,
@@ -171,8 +184,11 @@ int run_up(const UpCommandOptions& o) {
     final_state = wait_for_job(client, s.id, true, [] { return g_stop.load(); });
     stop_all();
     if (g_stop) {
-      spdlog::warn("interrupted: job {} is kept in {} (restart `vesper up` or `vesper server`)",
-                   s.id, data_dir.string());
+      spdlog::warn(
+          "interrupted: {}; kept in {} (`vesper server --data-dir {}` serves it, "
+          "`vesper fetch` gets its frames)",
+          describe_job(client.get_json("/jobs/" + std::to_string(s.id))), data_dir.string(),
+          data_dir.string());
       return 130;
     }
     spdlog::info("{}", describe_job(final_state));

@@ -18,9 +18,10 @@ namespace {
 Worker* g_worker = nullptr;
 
 // Async-signal-safe: request_stop only sets an atomic flag. The render in
-// progress is finished and reported; a second signal is not special-cased
-// (SIGKILL is the hard stop, and its lease simply expires).
+// progress is finished and reported; a second signal ends the worker at once
+// (its render dies with it, its lease expires).
 extern "C" void on_stop_signal(int) {
+  exit_on_second_signal();
   if (g_worker) g_worker->request_stop();
 }
 
