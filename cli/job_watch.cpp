@@ -28,6 +28,17 @@ std::string describe_job(const nlohmann::json& j) {
   return s;
 }
 
+namespace {
+bool all_workers_blocked(FarmClient& client, const nlohmann::json& job) {
+  std::set<std::string> blocked;
+  for (const auto& b : job.at("blocked_workers")) blocked.insert(b.get<std::string>());
+  const nlohmann::json all = client.get_json("/workers");
+  for (const auto& w : all.at("workers"))
+    if (!blocked.count(w.at("worker_id").get<std::string>())) return false;
+  return true;
+}
+}  // namespace
+
 nlohmann::json wait_for_job(FarmClient& client, long long job, bool show_progress,
                             const std::function<bool()>& should_stop) {
   const std::string path = "/jobs/" + std::to_string(job);
@@ -54,12 +65,28 @@ nlohmann::json wait_for_job(FarmClient& client, long long job, bool show_progres
             t.at("attempts").get<int>(), job);
     const int total = j.at("total").get<int>();
     const auto& c = j.at("counts");
-    const int settled =
+    // Settled tasks plus the running ones' heartbeat progress, in thousandths.
+    double settled =
         c.at("done").get<int>() + c.at("failed").get<int>() + c.at("canceled").get<int>();
-    if (show_progress && total > 0) progress.update(size_t(settled), size_t(total));
+    for (const auto& t : j.value("tasks", nlohmann::json::array()))
+      if (t.contains("progress")) settled += std::clamp(t.at("progress").get<double>(), 0.0, 1.0);
+    if (show_progress && total > 0) progress.update(size_t(settled * 1000), size_t(total) * 1000);
     if (j.at("finished").get<bool>() || j.at("state") == "canceled" ||
         (should_stop && should_stop())) {
       if (show_progress) progress.finish();
+      return j;
+    }
+    // Queued work no registered worker may take (each is blocklisted for this
+    // job) would be waited for forever: say so and stop waiting.
+    if (c.at("queued").get<int>() > 0 && c.at("leased").get<int>() == 0 &&
+        !j.value("blocked_workers", nlohmann::json::array()).empty() &&
+        all_workers_blocked(client, j)) {
+      if (show_progress) progress.finish();
+      spdlog::error(
+          "job {}: every registered worker is blocklisted for this job after failing "
+          "its tasks, so its {} queued tasks will not run; see `vesper logs {}`, fix "
+          "the cause, then `vesper retry {}`",
+          job, c.at("queued").get<int>(), job, job);
       return j;
     }
     std::this_thread::sleep_for(delay);

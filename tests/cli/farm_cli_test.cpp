@@ -259,6 +259,22 @@ TEST_F(FarmTest, PauseResumeAndWorkersFromTheCli) {
   EXPECT_NE(farm("pause 999").err.find("no job 999"), std::string::npos);
 }
 
+// When every worker is blocklisted for a job, `submit --wait` says so and
+// returns instead of waiting forever for tasks nobody may take.
+TEST_F(FarmTest, WaitStopsWhenEveryWorkerIsBlocked) {
+  const auto config = write_config(10, 2);
+  const auto scene = write_scene(16, 12, 1);
+  const auto broken = dir_ / "broken-renderer.sh";
+  std::ofstream(broken) << "#!/bin/sh\nexit 7\n";
+  std::filesystem::permissions(broken, std::filesystem::perms::owner_all);
+  start_server(config);
+  start_worker("only", config, {"--renderer", broken.string()});
+  const RunResult r = farm("submit " + scene.string() + " --frames 1-5 --max-attempts 5 --wait");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("every registered worker is blocklisted"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("5 queued tasks"), std::string::npos) << r.err;
+}
+
 TEST_F(FarmTest, SubmitErrorsNameTheProblem) {
   const auto config = write_config(10);
   const auto scene = write_scene(16, 16, 1);
