@@ -88,6 +88,8 @@ std::string FarmClient::get_text(const std::string& path) {
 std::string FarmClient::put_blob(const std::filesystem::path& file) {
   const auto sha = worker_detail::sha256_file(file);
   if (!sha) throw FarmClientError(file.string() + ": cannot read");
+  // Content-addressed: a blob the server has is not sent again.
+  if (http_->head(std::string(kApi) + "/blobs/" + *sha).status == 200) return *sha;
   const auto r = http_->put_file(std::string(kApi) + "/blobs/" + *sha, file);
   if (!r.ok()) throw FarmClientError(describe("upload of " + file.string(), r));
   return *sha;

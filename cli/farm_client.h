@@ -46,7 +46,7 @@ class FarmClient {
   nlohmann::json get_json(const std::string& path);
   nlohmann::json post_json(const std::string& path, const nlohmann::json& body);
   std::string get_text(const std::string& path);
-  // Uploads a file as a blob; returns its sha256.
+  // Uploads a file as a blob unless the server has it; returns its sha256.
   std::string put_blob(const std::filesystem::path& file);
   // Streams a GET into `file` (written as file + ".part", renamed when complete).
   void download(const std::string& path, const std::filesystem::path& file);

@@ -77,6 +77,17 @@ HttpResponse HttpClient::post_json(const std::string& path, const std::string& j
   return r;
 }
 
+HttpResponse HttpClient::head(const std::string& path) {
+  CURL* c = static_cast<CURL*>(curl_);
+  curl_easy_reset(c);
+  Headers h;
+  h.add(auth_header_);
+  curl_easy_setopt(c, CURLOPT_URL, (base_ + path).c_str());
+  curl_easy_setopt(c, CURLOPT_HTTPHEADER, h.list);
+  curl_easy_setopt(c, CURLOPT_NOBODY, 1L);
+  return perform();
+}
+
 HttpResponse HttpClient::get(const std::string& path) {
   CURL* c = static_cast<CURL*>(curl_);
   curl_easy_reset(c);

@@ -28,6 +28,7 @@ class HttpClient {
   // GET into a file (streamed); the file is truncated first.
   HttpResponse get_to_file(const std::string& path, const std::filesystem::path& file);
   HttpResponse get(const std::string& path);
+  HttpResponse head(const std::string& path);  // status only
 
  private:
   HttpResponse perform();
