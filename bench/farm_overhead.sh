@@ -4,12 +4,15 @@
 # directory, child render, upload, fetch; no composite), interleaved in one
 # run so machine load hits both alike. Prints the median wall times and the
 # ratios farm / direct.
-#   bench/farm_overhead.sh [SCENE] [ROUNDS]   (default: the night-room demo, 3)
+#   bench/farm_overhead.sh [SCENE] [ROUNDS] [SPLIT]
+#   (default: the night-room demo, 3 rounds, the 2-worker run split into
+#   tasks of 32 samples = the demo's 64 spp in two)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 vesper=./build/cli/vesper
 scene=${1:-scenes/night-room/scene.json}
 rounds=${2:-3}
+split=${3:-32}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -22,7 +25,7 @@ for ((i = 0; i < rounds; i++)); do
   $vesper up --scene "$scene" --workers 1 --no-comp --data-dir "$work/farm1-$i" -o "$work/out1-$i" \
     >/dev/null 2>"$work/up1.log"
   t2=$(now)
-  $vesper up --scene "$scene" --workers 2 --no-comp --data-dir "$work/farm2-$i" -o "$work/out2-$i" \
+  $vesper up --scene "$scene" --workers 2 --split "$split" --no-comp --data-dir "$work/farm2-$i" -o "$work/out2-$i" \
     >/dev/null 2>"$work/up2.log"
   t3=$(now)
   direct+=("$(awk "BEGIN {print $t1 - $t0}")")

@@ -95,17 +95,20 @@ int run_up(const UpCommandOptions& o) {
   if (o.spp) request.spp = *o.spp;
   if (o.samples_per_task) request.samples_per_task = *o.samples_per_task;
   const int n_workers = std::max(1, o.workers.value_or(settings.up.workers));
-  // Fewer frames than workers: split each frame into sample ranges so every
-  // worker helps (the server merges them exactly), unless told otherwise.
-  if (!o.samples_per_task && settings.job.samples_per_task == 0) {
-    try {
-      const int frames = int(parse_frame_range(request.frames).size());
-      const int spp = request.spp > 0 ? request.spp : load_scene(request.scene).render.spp;
-      if (frames < n_workers && spp >= n_workers)
-        request.samples_per_task = (spp * frames + n_workers - 1) / n_workers;
-    } catch (const std::exception&) {
-      // Bad frames or scene: submit_job reports it properly below.
-    }
+  // The workers share this machine's cores: at most `tasks` renders run at
+  // once, so each gets cores / min(workers, tasks) threads. (Splitting a frame
+  // over workers on one machine does not make it faster: the same cores, plus
+  // each task's own scene setup and a merge — bench/farm_overhead.sh.)
+  int concurrent = n_workers;
+  try {
+    const int frames = int(parse_frame_range(request.frames).size());
+    const int spp = request.spp > 0 ? request.spp : load_scene(request.scene).render.spp;
+    const int per_frame = request.samples_per_task > 0
+                              ? (spp + request.samples_per_task - 1) / request.samples_per_task
+                              : 1;
+    concurrent = std::clamp(frames * per_frame, 1, n_workers);
+  } catch (const std::exception&) {
+    // Bad frames or scene: submit_job reports it properly below.
   }
   const std::filesystem::path data_dir = expand_user(o.data_dir.value_or(settings.up.data_dir));
   const std::filesystem::path out_dir = expand_user(o.output_dir.value_or(settings.up.output_dir));
@@ -137,7 +140,7 @@ int run_up(const UpCommandOptions& o) {
     wc.cache_dir = data_dir / "worker-cache";
     wc.idle_backoff_min = 0.05;  // one machine: poll eagerly
     wc.idle_backoff_max = 0.5;
-    wc.render_threads = std::max(1, cores / n_workers);
+    wc.render_threads = std::max(1, cores / concurrent);
     workers.push_back(std::make_unique<Worker>(wc));
   }
   for (auto& w : workers) g_workers.push_back(w.get());
