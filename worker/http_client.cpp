@@ -28,6 +28,16 @@ struct Headers {
   void add(const std::string& h) { list = curl_slist_append(list, h.c_str()); }
 };
 
+// Resets the reused handle for a request to `url` (libcurl copies it) with
+// `headers`, which must outlive the transfer.
+CURL* start(void* handle, const std::string& url, const Headers& headers) {
+  CURL* c = static_cast<CURL*>(handle);
+  curl_easy_reset(c);
+  curl_easy_setopt(c, CURLOPT_URL, url.c_str());
+  curl_easy_setopt(c, CURLOPT_HTTPHEADER, headers.list);
+  return c;
+}
+
 }  // namespace
 
 HttpClient::HttpClient(std::string base_url, std::string token, double timeout_seconds)
@@ -59,17 +69,10 @@ HttpResponse HttpClient::perform() {
   return r;
 }
 
-HttpResponse HttpClient::post_json(const std::string& path, const std::string& json_body) {
+// Performs the prepared request, collecting the answer's body.
+HttpResponse HttpClient::perform_to_string() {
   CURL* c = static_cast<CURL*>(curl_);
-  curl_easy_reset(c);
-  Headers h;
-  h.add(auth_header_);
-  h.add("Content-Type: application/json");
   std::string body;
-  curl_easy_setopt(c, CURLOPT_URL, (base_ + path).c_str());
-  curl_easy_setopt(c, CURLOPT_HTTPHEADER, h.list);
-  curl_easy_setopt(c, CURLOPT_POSTFIELDS, json_body.data());
-  curl_easy_setopt(c, CURLOPT_POSTFIELDSIZE_LARGE, curl_off_t(json_body.size()));
   curl_easy_setopt(c, CURLOPT_WRITEFUNCTION, write_string);
   curl_easy_setopt(c, CURLOPT_WRITEDATA, &body);
   HttpResponse r = perform();
@@ -77,30 +80,29 @@ HttpResponse HttpClient::post_json(const std::string& path, const std::string& j
   return r;
 }
 
-HttpResponse HttpClient::head(const std::string& path) {
-  CURL* c = static_cast<CURL*>(curl_);
-  curl_easy_reset(c);
+HttpResponse HttpClient::post_json(const std::string& path, const std::string& json_body) {
   Headers h;
   h.add(auth_header_);
-  curl_easy_setopt(c, CURLOPT_URL, (base_ + path).c_str());
-  curl_easy_setopt(c, CURLOPT_HTTPHEADER, h.list);
+  h.add("Content-Type: application/json");
+  CURL* c = start(curl_, base_ + path, h);
+  curl_easy_setopt(c, CURLOPT_POSTFIELDS, json_body.data());
+  curl_easy_setopt(c, CURLOPT_POSTFIELDSIZE_LARGE, curl_off_t(json_body.size()));
+  return perform_to_string();
+}
+
+HttpResponse HttpClient::head(const std::string& path) {
+  Headers h;
+  h.add(auth_header_);
+  CURL* c = start(curl_, base_ + path, h);
   curl_easy_setopt(c, CURLOPT_NOBODY, 1L);
   return perform();
 }
 
 HttpResponse HttpClient::get(const std::string& path) {
-  CURL* c = static_cast<CURL*>(curl_);
-  curl_easy_reset(c);
   Headers h;
   h.add(auth_header_);
-  std::string body;
-  curl_easy_setopt(c, CURLOPT_URL, (base_ + path).c_str());
-  curl_easy_setopt(c, CURLOPT_HTTPHEADER, h.list);
-  curl_easy_setopt(c, CURLOPT_WRITEFUNCTION, write_string);
-  curl_easy_setopt(c, CURLOPT_WRITEDATA, &body);
-  HttpResponse r = perform();
-  r.body = std::move(body);
-  return r;
+  start(curl_, base_ + path, h);
+  return perform_to_string();
 }
 
 HttpResponse HttpClient::get_to_file(const std::string& path, const std::filesystem::path& file) {
@@ -110,12 +112,9 @@ HttpResponse HttpClient::get_to_file(const std::string& path, const std::filesys
     r.error = "cannot write " + file.string();
     return r;
   }
-  CURL* c = static_cast<CURL*>(curl_);
-  curl_easy_reset(c);
   Headers h;
   h.add(auth_header_);
-  curl_easy_setopt(c, CURLOPT_URL, (base_ + path).c_str());
-  curl_easy_setopt(c, CURLOPT_HTTPHEADER, h.list);
+  CURL* c = start(curl_, base_ + path, h);
   curl_easy_setopt(c, CURLOPT_WRITEFUNCTION, write_file);
   curl_easy_setopt(c, CURLOPT_WRITEDATA, f);
   HttpResponse r = perform();
@@ -132,23 +131,16 @@ HttpResponse HttpClient::put_file(const std::string& path, const std::filesystem
   }
   std::error_code ec;
   const auto size = std::filesystem::file_size(file, ec);
-  CURL* c = static_cast<CURL*>(curl_);
-  curl_easy_reset(c);
   Headers h;
   h.add(auth_header_);
   h.add("Content-Type: application/octet-stream");
   h.add("Expect:");  // no 100-continue round trip
-  std::string body;
-  curl_easy_setopt(c, CURLOPT_URL, (base_ + path).c_str());
-  curl_easy_setopt(c, CURLOPT_HTTPHEADER, h.list);
+  CURL* c = start(curl_, base_ + path, h);
   curl_easy_setopt(c, CURLOPT_UPLOAD, 1L);
   curl_easy_setopt(c, CURLOPT_READDATA, f);  // default read function: fread
   curl_easy_setopt(c, CURLOPT_INFILESIZE_LARGE, curl_off_t(ec ? 0 : size));
-  curl_easy_setopt(c, CURLOPT_WRITEFUNCTION, write_string);
-  curl_easy_setopt(c, CURLOPT_WRITEDATA, &body);
-  HttpResponse r = perform();
+  HttpResponse r = perform_to_string();
   std::fclose(f);
-  r.body = std::move(body);
   return r;
 }
 

@@ -32,6 +32,7 @@ class HttpClient {
 
  private:
   HttpResponse perform();
+  HttpResponse perform_to_string();
   std::string base_, auth_header_;
   double timeout_;
   void* curl_;
