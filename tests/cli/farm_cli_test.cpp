@@ -83,17 +83,23 @@ TEST_F(FarmTest, KilledWorkerLosesNoWork) {
   const auto config = write_config(2);
   const auto scene = write_scene(64, 48, 1600);  // ~6 s on one thread
   start_server(config);
-  auto& doomed = start_worker("doomed", config);
+  // A quiet render (-q): it writes nothing to the dead worker's stderr pipe,
+  // so only the parent-death signal can end it (a chatty one would also die
+  // of SIGPIPE at its next progress line). exec keeps the worker its parent.
+  const auto quiet = dir_ / "quiet-renderer.sh";
+  std::ofstream(quiet) << "#!/bin/sh\nexec " << VESPER_BINARY << " \"$@\" -q\n";
+  std::filesystem::permissions(quiet, std::filesystem::perms::owner_all);
+  auto& doomed = start_worker("doomed", config, {"--renderer", quiet.string()});
   const long long id = submit(scene.string() + " --frames 1 --name kill");
   wait_job(id, 60, [](const nlohmann::json& j) { return j.at("counts").at("leased") == 1; });
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // mid-render
   doomed.signal(SIGKILL);
   ASSERT_TRUE(doomed.wait_for(5));
-  // Its render (a child in its own process group) dies with it.
+  // Its render (a child in its own process group, seconds from its end) dies
+  // with it: gone within a second.
   const std::string marker = (dir_ / "cache-doomed").string();
   bool orphan = true;
-  for (int i = 0; i < 100 && orphan;
-       ++i, std::this_thread::sleep_for(std::chrono::milliseconds(50)))
+  for (int i = 0; i < 20 && orphan; ++i, std::this_thread::sleep_for(std::chrono::milliseconds(50)))
     orphan = process_running_with(marker);
   EXPECT_FALSE(orphan) << "the killed worker's render is still running";
   start_worker("survivor", config);
