@@ -68,7 +68,7 @@ int run_vdb_info(const VdbInfoOptions& o) {
       out += fmt::format("  value range: [{:g}, {:g}], background {:g}\n", g.min_value, g.max_value,
                          g.background);
     if (g.linear_transform) {
-      const auto& m = g.index_to_world.m;
+      const auto& m = g.index_to_world.matrix().m;
       out += fmt::format(
           "  index to world: [{:g} {:g} {:g} {:g}; {:g} {:g} {:g} {:g}; {:g} {:g} {:g} {:g}]\n",
           m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11]);

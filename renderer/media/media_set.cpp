@@ -45,7 +45,8 @@ void spans_of(const Medium& medium, const Ray& ray, float tmax, std::vector<Majo
   const auto& g = std::get<GridMedium>(medium);
   const float scale = g.density_scale * max_sigma_t(g.sigma_a, g.sigma_s);
   if (scale <= 0.f) return;
-  const Vec3 o = g.render_to_index.point(ray.origin), d = g.render_to_index.vector(ray.dir);
+  const Vec3 o = g.render_to_index.apply_point(ray.origin),
+             d = g.render_to_index.apply_vector(ray.dir);
   g.majorants->walk(o, d, 0.f, tmax, [&](const MajorantSegment& s) {
     if (s.max_density > 0.f) out.push_back({s.t0, s.t1, s.max_density * scale, false});
     return true;
@@ -106,13 +107,13 @@ MediumCoefficients MediaSet::coefficients(const Vec3& p) const {
       c.sigma_s += h->sigma_s;
     } else {
       const auto& g = std::get<GridMedium>(m);
-      const float d = g.density->sample(g.render_to_index.point(p)) * g.density_scale;
+      const float d = g.density->sample(g.render_to_index.apply_point(p)) * g.density_scale;
       if (d > 0.f) {
         c.sigma_a += g.sigma_a * d;
         c.sigma_s += g.sigma_s * d;
       }
       if (g.emission) {
-        const float e = g.emission->sample(g.render_to_emission_index.point(p));
+        const float e = g.emission->sample(g.render_to_emission_index.apply_point(p));
         if (e > 0.f) c.emission += g.emission_coefficient * e;
       }
     }
@@ -136,7 +137,8 @@ float MediaSet::pick_phase_g(const Vec3& p, float u) const {
       if (inside) w = h->sigma_s.average();
     } else {
       const auto& g = std::get<GridMedium>(media_[i]);
-      w = g.density->sample(g.render_to_index.point(p)) * g.density_scale * g.sigma_s.average();
+      w = g.density->sample(g.render_to_index.apply_point(p)) * g.density_scale *
+          g.sigma_s.average();
     }
     weights[i] = std::max(w, 0.f);
     total += weights[i];

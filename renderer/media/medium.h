@@ -9,6 +9,7 @@
 
 #include "renderer/core/ray.h"
 #include "renderer/math/rgb.h"
+#include "renderer/math/transform.h"
 #include "renderer/volume/density_grid.h"
 #include "renderer/volume/majorant_grid.h"
 
@@ -28,28 +29,14 @@ struct HomogeneousMedium {
   bool bounded = false;
 };
 
-// Render-space affine map (float, row-major 3x4).
-struct Affine3f {
-  float m[12];
-  Vec3 point(const Vec3& p) const {
-    return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
-            m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
-            m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
-  }
-  Vec3 vector(const Vec3& v) const {
-    return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
-            m[8] * v.x + m[9] * v.y + m[10] * v.z};
-  }
-};
-
 struct GridMedium {
   std::shared_ptr<const DensityGrid> density;
   std::shared_ptr<const DensityGrid> emission;  // may be null
   std::shared_ptr<const MajorantGrid> majorants;
-  Affine3f render_to_index;
-  Affine3f render_to_emission_index;  // when emission is set
-  float density_scale = 1;            // times sigma_a / sigma_s below
-  Rgb sigma_a, sigma_s;               // per render unit at density 1
+  Transformf render_to_index;
+  Transformf render_to_emission_index;  // when emission is set
+  float density_scale = 1;              // times sigma_a / sigma_s below
+  Rgb sigma_a, sigma_s;                 // per render unit at density 1
   float g = 0;
   Rgb emission_coefficient;  // per render unit at emission value 1
 };

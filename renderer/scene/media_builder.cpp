@@ -3,29 +3,18 @@
 #include <limits>
 #include <stdexcept>
 
-#include "renderer/media/affine.h"
-
 namespace vesper {
 namespace {
 
-Affine3f to_float(const Affine3d& a) {
-  Affine3f f;
-  for (int i = 0; i < 12; ++i) f.m[i] = float(a.m[size_t(i)]);
-  return f;
-}
-
 // render -> index = (T ∘ G)^-1 ∘ (r * unit_scale + origin)
-Affine3f render_to_index(const Transform& t, const DensityGrid& grid, const Vec3d& origin,
-                         double unit_scale) {
-  const Affine3d world_from_index =
-      compose(affine_from_transform_rows(t.m.data()), grid.index_to_world());
-  const auto index_from_world = inverse(world_from_index);
-  if (!index_from_world)
+Transformf render_to_index(const Transform& t, const DensityGrid& grid, const Vec3d& origin,
+                           double unit_scale) {
+  const Transform world_from_index = t * grid.index_to_world();
+  if (!world_from_index.invertible())
     throw std::runtime_error("grid '" + grid.name() + "' has a singular transform");
-  Affine3d world_from_render;
-  world_from_render.m = {unit_scale, 0,        0, origin.x, 0,          unit_scale,
-                         0,          origin.y, 0, 0,        unit_scale, origin.z};
-  return to_float(compose(*index_from_world, world_from_render));
+  const Transform world_from_render =
+      Transform::translate(origin) * Transform::scale(Vec3d(unit_scale));
+  return (inverse(world_from_index) * world_from_render).cast<float>();
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "renderer/math/rgb.h"
+#include "renderer/math/transform.h"
 #include "renderer/math/vec.h"
 #include "renderer/volume/density_grid.h"
 
@@ -78,16 +79,6 @@ struct PrincipledMaterialDesc {
 };
 using MaterialDesc = std::variant<DiffuseMaterialDesc, ConductorMaterialDesc,
                                   DielectricMaterialDesc, PrincipledMaterialDesc>;
-
-// Row-major 4x4 affine transform (last row 0 0 0 1) applied to points.
-struct Transform {
-  std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  Vec3d apply_point(const Vec3d& p) const {
-    return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
-            m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
-            m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
-  }
-};
 
 struct QuadShapeDesc {
   Vec3d corner, edge1, edge2;

@@ -32,8 +32,6 @@ struct SceneParseContext {
 
 // `T` of docs/scene-format.md: translate/rotate/scale or a row-major matrix.
 Transform parse_transform(JsonReader node);
-// Row-major 4x4 product a * b (apply b first).
-Transform compose(const Transform& a, const Transform& b);
 
 ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx);
 LightDesc parse_light(JsonReader node, SceneParseContext& ctx);

@@ -6,7 +6,7 @@
 namespace vesper {
 
 NanoDensityGrid::NanoDensityGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::string name,
-                                 const Affine3d& index_to_world, const IndexBox& active_box,
+                                 const Transform& index_to_world, const IndexBox& active_box,
                                  float max_value)
     : handle_(std::move(handle)),
       name_(std::move(name)),

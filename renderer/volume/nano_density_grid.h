@@ -15,14 +15,14 @@ class NanoDensityGrid final : public DensityGrid {
  public:
   // handle must hold a nanovdb::FloatGrid whose inactive values are 0.
   NanoDensityGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::string name,
-                  const Affine3d& index_to_world, const IndexBox& active_box, float max_value);
+                  const Transform& index_to_world, const IndexBox& active_box, float max_value);
 
   // Thread-safe: each call uses its own ReadAccessor (construction is a few
   // pointer copies; the accessor's node cache then serves the 8 corner reads).
   float sample(const Vec3& index_pos) const override;
   float voxel(int i, int j, int k) const override;
   IndexBox active_box() const override { return box_; }
-  const Affine3d& index_to_world() const override { return xform_; }
+  const Transform& index_to_world() const override { return xform_; }
   float max_value() const override { return max_; }
   const std::string& name() const override { return name_; }
 
@@ -33,7 +33,7 @@ class NanoDensityGrid final : public DensityGrid {
   nanovdb::GridHandle<nanovdb::HostBuffer> handle_;
   const nanovdb::FloatGrid* grid_ = nullptr;
   std::string name_;
-  Affine3d xform_;
+  Transform xform_;
   IndexBox box_;
   float max_ = 0;
 };

@@ -68,14 +68,14 @@ std::string num_str(double v) {
 }
 
 // OpenVDB maps row vectors: world = [i j k 1] * M, translation in row 3.
-Affine3d to_affine(const openvdb::math::Transform& tf) {
+Transform to_transform(const openvdb::math::Transform& tf) {
   const openvdb::Mat4d m = tf.baseMap()->getAffineMap()->getMat4();
-  Affine3d a;
+  Matrix4 a;
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) a.m[r * 4 + c] = m(c, r);
-    a.m[r * 4 + 3] = m(3, r);
+    for (int c = 0; c < 3; ++c) a(r, c) = m(c, r);
+    a(r, 3) = m(3, r);
   }
-  return a;
+  return Transform(a);
 }
 
 IndexBox to_box(const openvdb::CoordBBox& b) {
@@ -132,7 +132,7 @@ std::vector<VdbGridInfo> describe_vdb_grids(const fs::path& file) {
       info.active_voxels = g->activeVoxelCount();
       info.active_box = to_box(g->evalActiveVoxelBoundingBox());
       info.linear_transform = g->transform().isLinear();
-      if (info.linear_transform) info.index_to_world = to_affine(g->transform());
+      if (info.linear_transform) info.index_to_world = to_transform(g->transform());
       if (auto fg = openvdb::GridBase::grid<openvdb::FloatGrid>(g))
         scalar_range(*fg, info);
       else if (auto dg = openvdb::GridBase::grid<openvdb::DoubleGrid>(g))
@@ -207,7 +207,7 @@ std::shared_ptr<const DensityGrid> load_vdb_grid(const fs::path& file, const std
   } catch (const std::exception& e) {
     throw VdbError(where + ": conversion to NanoVDB failed: " + e.what());
   }
-  return std::make_shared<NanoDensityGrid>(std::move(handle), grid_name, to_affine(tf), box,
+  return std::make_shared<NanoDensityGrid>(std::move(handle), grid_name, to_transform(tf), box,
                                            max_value);
 }
 

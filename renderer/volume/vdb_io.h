@@ -38,8 +38,8 @@ struct VdbGridInfo {
   IndexBox active_box;
   bool has_range = false;  // scalar (float/double/int) grids only
   double min_value = 0, max_value = 0;
-  double background = 0;    // scalar grids only
-  Affine3d index_to_world;  // identity when the transform is not linear
+  double background = 0;     // scalar grids only
+  Transform index_to_world;  // identity when the transform is not linear
   bool linear_transform = true;
 };
 std::vector<VdbGridInfo> describe_vdb_grids(const std::filesystem::path& file);

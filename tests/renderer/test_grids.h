@@ -16,8 +16,10 @@ class FunctionGrid : public DensityGrid {
  public:
   FunctionGrid(int n, double voxel, Vec3d origin, std::function<float(const Vec3&)> f,
                std::string name = "density")
-      : n_(n), f_(std::move(f)), name_(std::move(name)) {
-    xf_.m = {voxel, 0, 0, origin.x, 0, voxel, 0, origin.y, 0, 0, voxel, origin.z};
+      : n_(n),
+        f_(std::move(f)),
+        name_(std::move(name)),
+        xf_(Transform::translate(origin) * Transform::scale(Vec3d(voxel))) {
     max_ = 0.f;
     for (int k = 0; k < n; ++k)
       for (int j = 0; j < n; ++j)
@@ -40,7 +42,7 @@ class FunctionGrid : public DensityGrid {
   }
   float voxel(int i, int j, int k) const override { return voxel_value(i, j, k); }
   IndexBox active_box() const override { return {{0, 0, 0}, {n_ - 1, n_ - 1, n_ - 1}}; }
-  const Affine3d& index_to_world() const override { return xf_; }
+  const Transform& index_to_world() const override { return xf_; }
   float max_value() const override { return max_; }
   const std::string& name() const override { return name_; }
 
@@ -49,7 +51,7 @@ class FunctionGrid : public DensityGrid {
   int n_;
   std::function<float(const Vec3&)> f_;
   std::string name_;
-  Affine3d xf_;
+  Transform xf_;
   float max_ = 0;
 };
 
