@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "cli/parent_watch.h"
 #include "renderer/output/exr_io.h"
+#include "renderer/output/metadata_keys.h"
 #include "renderer/output/partial_io.h"
 
 namespace vesper::cli {
@@ -37,8 +38,8 @@ int run_merge(const MergeCommandOptions& o) {
     return 1;
   }
   const int frame_spp = parts.front().frame_spp;
-  const std::string& begin = merged.metadata.at("vesper:sample_begin");
-  const std::string& end = merged.metadata.at("vesper:sample_end");
+  const std::string& begin = merged.metadata.at(metadata_key::kSampleBegin);
+  const std::string& end = merged.metadata.at(metadata_key::kSampleEnd);
   if (begin != "0" || end != std::to_string(frame_spp))
     spdlog::warn("merged samples [{}, {}) of a {}-spp frame: the frame is not complete", begin, end,
                  frame_spp);

@@ -7,6 +7,7 @@
 #include "cli/parent_watch.h"
 #include "cli/progress.h"
 #include "renderer/output/exr_io.h"
+#include "renderer/output/metadata_keys.h"
 #include "renderer/output/partial_io.h"
 #include "renderer/render/frame.h"
 #include "renderer/sampling/sampler.h"
@@ -92,7 +93,7 @@ int run_render(const RenderCommandOptions& o) {
   if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
   FrameResult result = render_frame(desc, ro);
   progress.finish();
-  if (o.frame) result.image.metadata["vesper:frame"] = std::to_string(*o.frame);
+  if (o.frame) result.image.metadata[metadata_key::kFrame] = std::to_string(*o.frame);
 
   try {
     if (o.partial)

@@ -12,6 +12,7 @@
 
 #include "compositor/grade.h"
 #include "renderer/output/exr_io.h"
+#include "renderer/output/metadata_keys.h"
 
 namespace vesper {
 namespace fs = std::filesystem;
@@ -187,8 +188,8 @@ CompReport run_comp(const CompRecipe& recipe, const CompProgress& progress) {
       exr.channels = {"R", "G", "B", "A"};
       exr.pixels = canvas.pixels;
       exr.metadata = first.metadata;
-      exr.metadata["vesper:comp_recipe"] = recipe.label;
-      exr.metadata["vesper:comp_colorspace"] = "scene_linear (graded)";
+      exr.metadata[metadata_key::kCompRecipe] = recipe.label;
+      exr.metadata[metadata_key::kCompColorspace] = "scene_linear (graded)";
       try {
         write_exr(exr, files.temp_for(fr.exr));
       } catch (const ImageIoError& e) {

@@ -5,6 +5,8 @@
 
 #include <system_error>
 
+#include "renderer/output/metadata_keys.h"
+
 namespace vesper {
 
 void write_exr(const LayeredImage& image, const std::filesystem::path& path) {
@@ -51,7 +53,7 @@ LayeredImage read_exr(const std::filesystem::path& path) {
     throw ImageIoError("cannot read " + path.string() + ": " + in->geterror());
   for (const auto& p : spec.extra_attribs) {
     const std::string name = p.name().string();
-    if (name.rfind("vesper:", 0) == 0) img.metadata[name] = p.get_string();
+    if (name.rfind(metadata_key::kPrefix, 0) == 0) img.metadata[name] = p.get_string();
   }
   in->close();
   return img;

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <system_error>
 
+#include "renderer/output/range_metadata.h"
+
 namespace vesper {
 namespace {
 
@@ -27,12 +29,9 @@ constexpr size_t kMaxHeaderBytes = size_t(16) << 20;
 constexpr int kMaxDimension = 1 << 16;
 
 // Metadata keys that render() writes and the partial carries as its own fields.
-const std::set<std::string>& range_keys() {
-  static const std::set<std::string> keys{"vesper:scene_hash",     "vesper:spp",
-                                          "vesper:sample_begin",   "vesper:sample_end",
-                                          "vesper:seed",           "vesper:renderer_version",
-                                          "vesper:render_seconds", "vesper:nonfinite_samples"};
-  return keys;
+bool is_range_key(const std::string& k) {
+  const auto& keys = metadata_key::kRangeKeys;
+  return std::any_of(keys.begin(), keys.end(), [&](const char* r) { return k == r; });
 }
 
 [[noreturn]] void fail(const std::string& source, const std::string& what) {
@@ -172,18 +171,18 @@ Partial make_partial(const LayeredImage& image, std::vector<ExactSum> sums, int 
     return it->second;
   };
   try {
-    p.sample_begin = std::stoi(key("vesper:sample_begin"));
-    p.sample_end = std::stoi(key("vesper:sample_end"));
-    p.seed = std::stoull(key("vesper:seed"));
-    p.nonfinite_samples = std::stoull(key("vesper:nonfinite_samples"));
-    p.render_seconds = std::stod(key("vesper:render_seconds"));
+    p.sample_begin = std::stoi(key(metadata_key::kSampleBegin));
+    p.sample_end = std::stoi(key(metadata_key::kSampleEnd));
+    p.seed = std::stoull(key(metadata_key::kSeed));
+    p.nonfinite_samples = std::stoull(key(metadata_key::kNonfiniteSamples));
+    p.render_seconds = std::stod(key(metadata_key::kRenderSeconds));
   } catch (const std::logic_error& e) {  // std::stoi & co.
     fail(p.source, std::string("image metadata: bad number: ") + e.what());
   }
-  p.scene_hash = key("vesper:scene_hash");
-  p.renderer_version = key("vesper:renderer_version");
+  p.scene_hash = key(metadata_key::kSceneHash);
+  p.renderer_version = key(metadata_key::kRendererVersion);
   for (const auto& [k, v] : image.metadata)
-    if (!range_keys().count(k)) p.metadata[k] = v;
+    if (!is_range_key(k)) p.metadata[k] = v;
   p.sums = std::move(sums);
   check_sums_size(p);
   return p;
@@ -283,7 +282,7 @@ Partial read_partial(const fs::path& path) {
   for (const auto& [k, v] : meta.items()) {
     if (!v.is_string())
       fail(src, "header: metadata key '" + k + "': expected a string, got " + v.dump());
-    if (range_keys().count(k))
+    if (is_range_key(k))
       fail(src, "header: metadata key '" + k + "' is a header field, not metadata");
     p.metadata[k] = v.get<std::string>();
   }
@@ -417,14 +416,14 @@ LayeredImage merge_partials(const std::vector<Partial>& parts) {
   img.pixels.resize(total.size());
   for (size_t k = 0; k < total.size(); ++k) img.pixels[k] = exact_mean(total[k], count);
   img.metadata = ref.metadata;
-  img.metadata["vesper:scene_hash"] = ref.scene_hash;
-  img.metadata["vesper:spp"] = std::to_string(count);
-  img.metadata["vesper:sample_begin"] = std::to_string(begin);
-  img.metadata["vesper:sample_end"] = std::to_string(end);
-  img.metadata["vesper:seed"] = std::to_string(ref.seed);
-  img.metadata["vesper:renderer_version"] = ref.renderer_version;
-  img.metadata["vesper:render_seconds"] = std::to_string(seconds);
-  img.metadata["vesper:nonfinite_samples"] = std::to_string(nonfinite);
+  set_range_metadata(img.metadata, {.scene_hash = ref.scene_hash,
+                                    .renderer_version = ref.renderer_version,
+                                    .spp = int(count),
+                                    .sample_begin = begin,
+                                    .sample_end = end,
+                                    .seed = ref.seed,
+                                    .render_seconds = seconds,
+                                    .nonfinite_samples = nonfinite});
   return img;
 }
 

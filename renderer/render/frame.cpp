@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 
+#include "renderer/output/metadata_keys.h"
+
 namespace vesper {
 namespace {
 
@@ -151,9 +153,10 @@ FrameResult render_frame(const SceneDescription& desc, const RenderOptions& opti
     frame.stats.nonfinite_samples += r.stats.nonfinite_samples;
     ++frame.passes;
   }
-  frame.image.metadata["vesper:render_seconds"] = std::to_string(frame.stats.seconds);
-  frame.image.metadata["vesper:nonfinite_samples"] = std::to_string(frame.stats.nonfinite_samples);
-  frame.image.metadata["vesper:passes"] = std::to_string(frame.passes);
+  auto& meta = frame.image.metadata;
+  meta[metadata_key::kRenderSeconds] = std::to_string(frame.stats.seconds);
+  meta[metadata_key::kNonfiniteSamples] = std::to_string(frame.stats.nonfinite_samples);
+  meta[metadata_key::kPasses] = std::to_string(frame.passes);
   return frame;
 }
 

@@ -1,0 +1,33 @@
+#pragma once
+// The `vesper:*` keys of an image's metadata (EXR header attributes): the one
+// place their names are spelled. README.md lists them for users.
+#include <array>
+
+namespace vesper::metadata_key {
+
+// read_exr keeps the header attributes whose names start with this.
+inline constexpr char kPrefix[] = "vesper:";
+
+// One sample range of a frame, written by render() (and by merge_partials()
+// for the union of the ranges); a partial carries them as its own fields.
+inline constexpr char kSceneHash[] = "vesper:scene_hash";
+inline constexpr char kSpp[] = "vesper:spp";  // samples in the range
+inline constexpr char kSampleBegin[] = "vesper:sample_begin";
+inline constexpr char kSampleEnd[] = "vesper:sample_end";
+inline constexpr char kSeed[] = "vesper:seed";
+inline constexpr char kRendererVersion[] = "vesper:renderer_version";
+inline constexpr char kRenderSeconds[] = "vesper:render_seconds";
+inline constexpr char kNonfiniteSamples[] = "vesper:nonfinite_samples";
+inline constexpr std::array<const char*, 8> kRangeKeys{
+    kSceneHash,       kSpp,           kSampleBegin,     kSampleEnd, kSeed,
+    kRendererVersion, kRenderSeconds, kNonfiniteSamples};
+
+// render_frame(): the number of render passes (beauty + variant layers).
+inline constexpr char kPasses[] = "vesper:passes";
+// `vesper render --frame N`.
+inline constexpr char kFrame[] = "vesper:frame";
+// The compositor's output: the recipe's label and the pixels' colour space.
+inline constexpr char kCompRecipe[] = "vesper:comp_recipe";
+inline constexpr char kCompColorspace[] = "vesper:comp_colorspace";
+
+}  // namespace vesper::metadata_key
