@@ -1,0 +1,115 @@
+#include "renderer/render/channel_layout.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "renderer/integrator/path_record.h"
+
+namespace vesper {
+namespace {
+
+using FE = FirstEvent;
+
+std::vector<size_t> bins_for(std::initializer_list<FirstEvent> kinds,
+                             std::initializer_list<bool> indirect, const std::vector<int>& groups,
+                             int group_count) {
+  std::vector<size_t> out;
+  for (FirstEvent k : kinds)
+    for (bool ind : indirect)
+      for (int g : groups) out.push_back(PathRecord::bin(k, ind, g, group_count));
+  return out;
+}
+
+void add_aov(ChannelLayout& l, Aov a, const std::vector<int>& all_groups) {
+  const int groups = int(all_groups.size());
+  auto transport = [&](const char* name, std::initializer_list<FE> kinds,
+                       std::initializer_list<bool> ind) {
+    l.bin_outputs.push_back({l.add_rgb(name), -1, bins_for(kinds, ind, all_groups, groups)});
+  };
+  switch (a) {
+    case Aov::Albedo:
+      l.albedo = l.add_rgb("albedo");
+      break;
+    case Aov::Normal:
+      l.normal = int(l.names.size());
+      l.names.insert(l.names.end(), {"normal.X", "normal.Y", "normal.Z"});
+      break;
+    case Aov::Depth:
+      l.depth = int(l.names.size());
+      l.names.push_back("depth.Z");
+      break;
+    case Aov::Emission:
+      transport("emission", {FE::SurfaceView, FE::VolumeView}, {false});
+      break;
+    case Aov::DiffuseDirect:
+      transport("diffuse_direct", {FE::Diffuse}, {false});
+      break;
+    case Aov::DiffuseIndirect:
+      transport("diffuse_indirect", {FE::Diffuse}, {true});
+      break;
+    case Aov::SpecularDirect:
+      transport("specular_direct", {FE::Specular}, {false});
+      break;
+    case Aov::SpecularIndirect:
+      transport("specular_indirect", {FE::Specular}, {true});
+      break;
+    case Aov::VolumeDirect:
+      transport("volume_direct", {FE::Volume}, {false});
+      break;
+    case Aov::VolumeIndirect:
+      transport("volume_indirect", {FE::Volume}, {true});
+      break;
+  }
+}
+
+// Indices of the layer's light groups (all when it names none); unknown names are skipped.
+std::vector<int> groups_of(const Scene& scene, const LayerSelection& layer,
+                           const std::vector<int>& all_groups) {
+  if (!layer.lights) return all_groups;
+  std::vector<int> kept;
+  for (const std::string& name : *layer.lights) {
+    const auto it = std::find(scene.group_names.begin(), scene.group_names.end(), name);
+    if (it != scene.group_names.end()) kept.push_back(int(it - scene.group_names.begin()));
+  }
+  return kept;
+}
+
+void add_layer(ChannelLayout& l, const LayerSelection& layer, const std::vector<int>& kept,
+               int groups) {
+  std::vector<size_t> bins;
+  switch (layer.paths) {
+    case PathSelection::All:
+      bins = bins_for({FE::SurfaceView, FE::VolumeView, FE::Diffuse, FE::Specular, FE::Volume},
+                      {false, true}, kept, groups);
+      break;
+    case PathSelection::Surface:
+      bins = bins_for({FE::SurfaceView, FE::Diffuse, FE::Specular}, {false, true}, kept, groups);
+      break;
+    case PathSelection::Volume:
+      bins = bins_for({FE::VolumeView, FE::Volume}, {false, true}, kept, groups);
+      break;
+  }
+  BinOutput out{l.add_rgb(layer.name), -1, std::move(bins)};
+  if (layer.alpha) {
+    out.alpha_channel = int(l.names.size());
+    l.names.push_back(layer.name + ".A");
+    l.need_transmittance = true;
+  }
+  l.bin_outputs.push_back(std::move(out));
+}
+
+}  // namespace
+
+ChannelLayout layout_for(const Scene& scene, const std::vector<Aov>& aovs,
+                         const std::vector<LayerSelection>& layers) {
+  ChannelLayout l;
+  std::vector<int> all_groups(scene.group_names.size());
+  std::iota(all_groups.begin(), all_groups.end(), 0);
+  for (Aov a : aovs) add_aov(l, a, all_groups);
+  const int groups = int(all_groups.size());
+  for (const LayerSelection& layer : layers)
+    add_layer(l, layer, groups_of(scene, layer, all_groups), groups);
+  return l;
+}
+
+}  // namespace vesper
