@@ -1,15 +1,9 @@
 #include "renderer/core/accel.h"
 
-#include <embree3/rtcore.h>
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
-#include <spdlog/spdlog.h>
-
-#include <cmath>
-#include <limits>
-#include <stdexcept>
-#include <string>
+#include "renderer/core/embree_scene.h"
 
 namespace vesper {
 
@@ -19,107 +13,47 @@ void set_flush_to_zero() {
 }
 
 namespace {
+
 enum class GeomKind : uint8_t { Quad, Sphere, Mesh };
 struct GeomRecord {
   GeomKind kind;
   uint32_t index;  // into quads / spheres / meshes
 };
 
-void embree_error(void*, RTCError code, const char* msg) {
-  // Called from inside Embree's C code: report, never throw through it.
-  spdlog::error("Embree error {}: {}", int(code), msg ? msg : "");
+// By Embree geometry id, in EmbreeScene's order: quads, spheres, meshes.
+std::vector<GeomRecord> records_of(const AccelGeometry& g) {
+  std::vector<GeomRecord> records;
+  for (uint32_t i = 0; i < g.quads.size(); ++i) records.push_back({GeomKind::Quad, i});
+  for (uint32_t i = 0; i < g.spheres.size(); ++i) records.push_back({GeomKind::Sphere, i});
+  for (uint32_t i = 0; i < g.meshes.size(); ++i) records.push_back({GeomKind::Mesh, i});
+  return records;
 }
+
 }  // namespace
 
 struct Accel::Impl {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  std::vector<AccelQuad> quads;
-  std::vector<AccelSphere> spheres;
-  std::vector<AccelMesh> meshes;
-  std::vector<GeomRecord> records;  // by Embree geometry id
-  size_t primitives = 0;
+  AccelGeometry geometry;
+  std::vector<GeomRecord> records;
+  EmbreeScene embree;  // declared after `geometry`, whose mesh buffers it shares
+  RTCScene scene;
 
-  void attach(RTCGeometry g, GeomRecord rec) {
-    rtcCommitGeometry(g);
-    const unsigned id = rtcAttachGeometry(scene, g);
-    rtcReleaseGeometry(g);
-    if (records.size() <= id) records.resize(id + 1);
-    records[id] = rec;
-  }
+  explicit Impl(AccelGeometry g)
+      : geometry(without_degenerate(std::move(g))),
+        records(records_of(geometry)),
+        embree(geometry),
+        scene(embree.scene()) {}
 };
 
 Accel::Accel(std::vector<AccelQuad> quads, std::vector<AccelSphere> spheres,
              std::vector<AccelMesh> meshes)
-    : impl_(std::make_unique<Impl>()) {
-  Impl& im = *impl_;
-  im.quads = std::move(quads);
-  im.spheres = std::move(spheres);
-  im.meshes = std::move(meshes);
-  im.device = rtcNewDevice("");
-  if (!im.device) throw std::runtime_error("could not create an Embree device");
-  rtcSetDeviceErrorFunction(im.device, embree_error, nullptr);
-  im.scene = rtcNewScene(im.device);
-  rtcSetSceneFlags(im.scene, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_HIGH);
+    : impl_(std::make_unique<Impl>(
+          AccelGeometry{std::move(quads), std::move(spheres), std::move(meshes)})) {}
 
-  for (uint32_t i = 0; i < im.quads.size(); ++i) {
-    const AccelQuad& q = im.quads[i];
-    if (!(length_squared(cross(q.edge1, q.edge2)) > 0.f)) continue;  // zero area: invisible
-    RTCGeometry g = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_QUAD);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
-    const Vec3 p[4] = {q.corner, q.corner + q.edge1, q.corner + q.edge1 + q.edge2,
-                       q.corner + q.edge2};
-    for (int k = 0; k < 4; ++k) {
-      v[3 * k] = p[k].x;
-      v[3 * k + 1] = p[k].y;
-      v[3 * k + 2] = p[k].z;
-    }
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
-    for (unsigned k = 0; k < 4; ++k) idx[k] = k;
-    im.attach(g, {GeomKind::Quad, i});
-    ++im.primitives;
-  }
-  for (uint32_t i = 0; i < im.spheres.size(); ++i) {
-    const AccelSphere& s = im.spheres[i];
-    RTCGeometry g = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                          RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
-    v[0] = s.center.x;
-    v[1] = s.center.y;
-    v[2] = s.center.z;
-    v[3] = s.radius;
-    im.attach(g, {GeomKind::Sphere, i});
-    ++im.primitives;
-  }
-  for (uint32_t i = 0; i < im.meshes.size(); ++i) {
-    AccelMesh& m = im.meshes[i];
-    // Degenerate triangles can never be hit meaningfully and have no normal.
-    std::erase_if(m.triangles, [&](const std::array<uint32_t, 3>& t) {
-      const Vec3 c =
-          cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
-      return !(length_squared(c) > 0.f) || !is_finite(c);
-    });
-    if (m.triangles.empty()) continue;
-    RTCGeometry g = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(),
-                               0, sizeof(Vec3), m.positions.size());
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
-                               3 * sizeof(uint32_t), m.triangles.size());
-    im.attach(g, {GeomKind::Mesh, i});
-    im.primitives += m.triangles.size();
-  }
-  rtcCommitScene(im.scene);
-}
+Accel::~Accel() = default;
 
-Accel::~Accel() {
-  if (impl_->scene) rtcReleaseScene(impl_->scene);
-  if (impl_->device) rtcReleaseDevice(impl_->device);
-}
+size_t Accel::primitive_count() const { return impl_->geometry.primitive_count(); }
 
-size_t Accel::primitive_count() const { return impl_->primitives; }
+const AccelGeometry& Accel::geometry() const { return impl_->geometry; }
 
 std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
   RTCIntersectContext ctx;
@@ -147,7 +81,7 @@ std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
   const float u = rh.hit.u, v = rh.hit.v;
   switch (rec.kind) {
     case GeomKind::Quad: {
-      const AccelQuad& q = impl_->quads[rec.index];
+      const AccelQuad& q = impl_->geometry.quads[rec.index];
       hit.p = q.corner + q.edge1 * u + q.edge2 * v;
       hit.n = normalize(cross(q.edge1, q.edge2));
       hit.material = q.material;
@@ -155,7 +89,7 @@ std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
       break;
     }
     case GeomKind::Sphere: {
-      const AccelSphere& s = impl_->spheres[rec.index];
+      const AccelSphere& s = impl_->geometry.spheres[rec.index];
       const Vec3 d = ray.origin + ray.dir * hit.t - s.center;
       hit.n = normalize(d);
       hit.p = s.center + hit.n * s.radius;  // re-project onto the surface (pbrt)
@@ -163,7 +97,7 @@ std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
       break;
     }
     case GeomKind::Mesh: {
-      const AccelMesh& m = impl_->meshes[rec.index];
+      const AccelMesh& m = impl_->geometry.meshes[rec.index];
       const auto& tri = m.triangles[rh.hit.primID];
       const Vec3 &p0 = m.positions[tri[0]], &p1 = m.positions[tri[1]], &p2 = m.positions[tri[2]];
       hit.p = p0 + (p1 - p0) * u + (p2 - p0) * v;

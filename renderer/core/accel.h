@@ -1,12 +1,12 @@
 #pragma once
 // Ray queries against the scene's surfaces through an Embree BVH (robust mode).
-// Embree stays behind this header: nothing else includes rtcore.h.
-#include <array>
+// Embree stays behind this header (core/embree_scene.h builds the BVH).
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
 
+#include "renderer/core/accel_geometry.h"
 #include "renderer/core/ray.h"
 
 namespace vesper {
@@ -17,23 +17,6 @@ struct SurfaceHit {
   float t = 0;
   uint32_t material = 0;
   int32_t light = -1;  // index into Scene::lights when the surface is an emitter
-};
-
-// Geometry handed to the accelerator, already in render space.
-struct AccelQuad {
-  Vec3 corner, edge1, edge2;
-  uint32_t material = 0;
-  int32_t light = -1;
-};
-struct AccelSphere {
-  Vec3 center;
-  float radius = 1;
-  uint32_t material = 0;
-};
-struct AccelMesh {
-  std::vector<Vec3> positions;
-  std::vector<std::array<uint32_t, 3>> triangles;  // degenerate ones are dropped by the accel
-  uint32_t material = 0;
 };
 
 class Accel {
@@ -49,6 +32,9 @@ class Accel {
   bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
   // Number of triangles/quads/spheres in the BVH.
   size_t primitive_count() const;
+  // The geometry in the BVH (degenerate primitives dropped), in render space:
+  // what the benchmark builds its raw EmbreeScene from.
+  const AccelGeometry& geometry() const;
 
   struct Impl;
 
