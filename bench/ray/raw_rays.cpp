@@ -45,37 +45,37 @@ inline void fill_ray(RTCRay& r, const RayRec& rec) {
   r.flags = 0;
 }
 
-}  // namespace
-
-uint64_t raw_intersect1(RTCScene scene, const std::vector<RayRec>& rays, int threads) {
+// One single-ray query per ray; Query(ctx, ray) -> whether it hit.
+template <typename Query>
+uint64_t count_single_ray_hits(const std::vector<RayRec>& rays, int threads, Query query) {
   return parallel_trace(rays.size(), threads, [&](size_t b, size_t e) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     uint64_t hits = 0;
-    for (size_t i = b; i < e; ++i) {
-      RTCRayHit rh;
-      fill_ray(rh.ray, rays[i]);
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(scene, &ctx, &rh);
-      hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-    }
+    for (size_t i = b; i < e; ++i) hits += query(ctx, rays[i]);
     return hits;
   });
 }
 
+}  // namespace
+
+uint64_t raw_intersect1(RTCScene scene, const std::vector<RayRec>& rays, int threads) {
+  return count_single_ray_hits(rays, threads, [&](RTCIntersectContext& ctx, const RayRec& rec) {
+    RTCRayHit rh;
+    fill_ray(rh.ray, rec);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &ctx, &rh);
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  });
+}
+
 uint64_t raw_occluded1(RTCScene scene, const std::vector<RayRec>& rays, int threads) {
-  return parallel_trace(rays.size(), threads, [&](size_t b, size_t e) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    uint64_t hits = 0;
-    for (size_t i = b; i < e; ++i) {
-      RTCRay r;
-      fill_ray(r, rays[i]);
-      rtcOccluded1(scene, &ctx, &r);
-      hits += r.tfar < 0.f;
-    }
-    return hits;
+  return count_single_ray_hits(rays, threads, [&](RTCIntersectContext& ctx, const RayRec& rec) {
+    RTCRay r;
+    fill_ray(r, rec);
+    rtcOccluded1(scene, &ctx, &r);
+    return r.tfar < 0.f;
   });
 }
 

@@ -332,8 +332,11 @@ Partial read_partial(const fs::path& path) {
   return p;
 }
 
-LayeredImage merge_partials(const std::vector<Partial>& parts) {
-  if (parts.empty()) throw PartialError("merge: no partial renders given");
+namespace {
+
+// Throws unless every partial has a non-empty range and is of the first one's
+// frame: size, channels, seed, scene, renderer version, frame spp, metadata.
+void check_one_frame(const std::vector<Partial>& parts) {
   const Partial& ref = parts.front();
   auto differ = [&](const Partial& p, const std::string& what, const std::string& mine,
                     const std::string& theirs) {
@@ -372,8 +375,11 @@ LayeredImage merge_partials(const std::vector<Partial>& parts) {
       if (va != vb) differ(p, "metadata " + k, va, vb);
     }
   }
+}
 
-  // The ranges must tile one contiguous range [begin, end).
+// Indices of the partials by sample_begin; throws unless their ranges tile
+// one contiguous range [begin, end) without overlap.
+std::vector<size_t> tiling_order(const std::vector<Partial>& parts) {
   std::vector<size_t> order(parts.size());
   std::iota(order.begin(), order.end(), size_t(0));
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
@@ -392,6 +398,16 @@ LayeredImage merge_partials(const std::vector<Partial>& parts) {
                          prev.source + " " + range_text(prev) + " and " + next.source + " " +
                          range_text(next) + ": the ranges must tile one contiguous range");
   }
+  return order;
+}
+
+}  // namespace
+
+LayeredImage merge_partials(const std::vector<Partial>& parts) {
+  if (parts.empty()) throw PartialError("merge: no partial renders given");
+  check_one_frame(parts);
+  const std::vector<size_t> order = tiling_order(parts);
+  const Partial& ref = parts.front();
   const int begin = parts[order.front()].sample_begin;
   const int end = parts[order.back()].sample_end;
   const int64_t count = int64_t(end) - begin;

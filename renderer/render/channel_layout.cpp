@@ -4,13 +4,14 @@
 #include <numeric>
 
 #include "renderer/integrator/path_record.h"
+#include "renderer/scene/aov_names.h"
 
 namespace vesper {
 namespace {
 
 using FE = FirstEvent;
 
-std::vector<size_t> bins_for(std::initializer_list<FirstEvent> kinds,
+std::vector<size_t> bins_for(const std::vector<FirstEvent>& kinds,
                              std::initializer_list<bool> indirect, const std::vector<int>& groups,
                              int group_count) {
   std::vector<size_t> out;
@@ -20,45 +21,46 @@ std::vector<size_t> bins_for(std::initializer_list<FirstEvent> kinds,
   return out;
 }
 
-void add_aov(ChannelLayout& l, Aov a, const std::vector<int>& all_groups) {
-  const int groups = int(all_groups.size());
-  auto transport = [&](const char* name, std::initializer_list<FE> kinds,
-                       std::initializer_list<bool> ind) {
-    l.bin_outputs.push_back({l.add_rgb(name), -1, bins_for(kinds, ind, all_groups, groups)});
-  };
+// The first events whose contributions a transport AOV sums (empty for the
+// others), and whether it takes the indirect ones (*_indirect) or the direct.
+std::vector<FirstEvent> transport_events(Aov a) {
   switch (a) {
-    case Aov::Albedo:
-      l.albedo = l.add_rgb("albedo");
-      break;
-    case Aov::Normal:
-      l.normal = int(l.names.size());
-      l.names.insert(l.names.end(), {"normal.X", "normal.Y", "normal.Z"});
-      break;
-    case Aov::Depth:
-      l.depth = int(l.names.size());
-      l.names.push_back("depth.Z");
-      break;
     case Aov::Emission:
-      transport("emission", {FE::SurfaceView, FE::VolumeView}, {false});
-      break;
+      return {FE::SurfaceView, FE::VolumeView};
     case Aov::DiffuseDirect:
-      transport("diffuse_direct", {FE::Diffuse}, {false});
-      break;
     case Aov::DiffuseIndirect:
-      transport("diffuse_indirect", {FE::Diffuse}, {true});
-      break;
+      return {FE::Diffuse};
     case Aov::SpecularDirect:
-      transport("specular_direct", {FE::Specular}, {false});
-      break;
     case Aov::SpecularIndirect:
-      transport("specular_indirect", {FE::Specular}, {true});
-      break;
+      return {FE::Specular};
     case Aov::VolumeDirect:
-      transport("volume_direct", {FE::Volume}, {false});
-      break;
     case Aov::VolumeIndirect:
-      transport("volume_indirect", {FE::Volume}, {true});
+      return {FE::Volume};
+    case Aov::Albedo:
+    case Aov::Normal:
+    case Aov::Depth:
       break;
+  }
+  return {};
+}
+bool transport_indirect(Aov a) {
+  return a == Aov::DiffuseIndirect || a == Aov::SpecularIndirect || a == Aov::VolumeIndirect;
+}
+
+void add_aov(ChannelLayout& l, Aov a, const std::vector<int>& all_groups) {
+  const std::string name(kAovNames[size_t(a)]);
+  if (a == Aov::Albedo) {
+    l.albedo = l.add_rgb(name);
+  } else if (a == Aov::Normal) {
+    l.normal = int(l.names.size());
+    l.names.insert(l.names.end(), {"normal.X", "normal.Y", "normal.Z"});
+  } else if (a == Aov::Depth) {
+    l.depth = int(l.names.size());
+    l.names.push_back("depth.Z");
+  } else {
+    l.bin_outputs.push_back({l.add_rgb(name), -1,
+                             bins_for(transport_events(a), {transport_indirect(a)}, all_groups,
+                                      int(all_groups.size()))});
   }
 }
 
