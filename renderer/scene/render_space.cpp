@@ -23,54 +23,45 @@ struct Bounds {
   bool empty() const { return lo.x > hi.x; }
 };
 
+// What each description adds to the bounds: its extent; lights at infinity
+// and unbounded media add nothing.
+void include(Bounds& b, const QuadShapeDesc& q) { b.add_parallelogram(q.corner, q.edge1, q.edge2); }
+void include(Bounds& b, const SphereShapeDesc& s) {
+  b.add(s.center - Vec3d(s.radius));
+  b.add(s.center + Vec3d(s.radius));
+}
+void include(Bounds& b, const MeshShapeDesc& m) {
+  for (const auto& p : m.positions) b.add(p);
+}
+void include(Bounds& b, const QuadLightDesc& q) { b.add_parallelogram(q.corner, q.edge1, q.edge2); }
+void include(Bounds& b, const PointLightDesc& p) { b.add(p.position); }
+void include(Bounds& b, const SpotLightDesc& s) { b.add(s.position); }
+void include(Bounds&, const SunLightDesc&) {}
+void include(Bounds&, const EnvironmentLightDesc&) {}
+void include(Bounds& b, const HomogeneousMediumDesc& h) {
+  if (!h.bounds) return;
+  b.add(h.bounds->min);
+  b.add(h.bounds->max);
+}
+void include(Bounds& b, const VdbMediumDesc& v) {
+  if (!v.density) return;
+  const IndexBox box = v.density->active_box();
+  if (box.empty()) return;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3d ip{double((c & 1) ? box.max[0] + 1 : box.min[0] - 1),
+                   double((c & 2) ? box.max[1] + 1 : box.min[1] - 1),
+                   double((c & 4) ? box.max[2] + 1 : box.min[2] - 1)};
+    b.add(v.transform.apply_point(v.density->index_to_world().apply_point(ip)));
+  }
+}
+
 Bounds scene_bounds(const SceneDescription& d) {
   Bounds b;
   b.add(d.camera.from);
-  for (const auto& s : d.shapes) {
-    std::visit(
-        [&](const auto& g) {
-          using T = std::decay_t<decltype(g)>;
-          if constexpr (std::is_same_v<T, QuadShapeDesc>) {
-            b.add_parallelogram(g.corner, g.edge1, g.edge2);
-          } else if constexpr (std::is_same_v<T, SphereShapeDesc>) {
-            b.add(g.center - Vec3d(g.radius));
-            b.add(g.center + Vec3d(g.radius));
-          } else {
-            for (const auto& p : g.positions) b.add(p);
-          }
-        },
-        s.geometry);
-  }
-  for (const auto& l : d.lights) {
-    std::visit(
-        [&](const auto& g) {
-          using T = std::decay_t<decltype(g)>;
-          if constexpr (std::is_same_v<T, QuadLightDesc>) {
-            b.add_parallelogram(g.corner, g.edge1, g.edge2);
-          } else if constexpr (std::is_same_v<T, PointLightDesc> ||
-                               std::is_same_v<T, SpotLightDesc>) {
-            b.add(g.position);
-          }
-        },
-        l.light);
-  }
-  for (const auto& m : d.media) {
-    if (const auto* h = std::get_if<HomogeneousMediumDesc>(&m.medium)) {
-      if (h->bounds) {
-        b.add(h->bounds->min);
-        b.add(h->bounds->max);
-      }
-    } else if (const auto* v = std::get_if<VdbMediumDesc>(&m.medium); v && v->density) {
-      const IndexBox box = v->density->active_box();
-      if (box.empty()) continue;
-      for (int c = 0; c < 8; ++c) {
-        const Vec3d ip{double((c & 1) ? box.max[0] + 1 : box.min[0] - 1),
-                       double((c & 2) ? box.max[1] + 1 : box.min[1] - 1),
-                       double((c & 4) ? box.max[2] + 1 : box.min[2] - 1)};
-        b.add(v->transform.apply_point(v->density->index_to_world().apply_point(ip)));
-      }
-    }
-  }
+  const auto add = [&](const auto& desc) { include(b, desc); };
+  for (const auto& s : d.shapes) std::visit(add, s.geometry);
+  for (const auto& l : d.lights) std::visit(add, l.light);
+  for (const auto& m : d.media) std::visit(add, m.medium);
   return b;
 }
 
