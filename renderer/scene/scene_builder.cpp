@@ -52,13 +52,13 @@ Camera make_camera(const CameraDesc& cd, const FilmDesc& film, const RenderSpace
 }
 
 // Everything the accelerator holds, in render space.
-struct AccelGeometry {
+struct SceneSurfaces {
   std::vector<AccelQuad> quads;
   std::vector<AccelSphere> spheres;
   std::vector<AccelMesh> meshes;
 };
 
-void add_shapes(const SceneDescription& desc, const RenderSpace& space, AccelGeometry& geometry) {
+void add_shapes(const SceneDescription& desc, const RenderSpace& space, SceneSurfaces& geometry) {
   for (const auto& s : desc.shapes) {
     std::visit(
         [&](const auto& g) {
@@ -84,7 +84,7 @@ void add_shapes(const SceneDescription& desc, const RenderSpace& space, AccelGeo
 
 // Lights in render space; emitters that are surfaces join the geometry.
 void add_lights(const SceneDescription& desc, const RenderSpace& space, Scene& scene,
-                AccelGeometry& geometry) {
+                SceneSurfaces& geometry) {
   for (const auto& ld : desc.lights) {
     const uint32_t index = uint32_t(scene.lights.size());
     RenderLight rl = make_render_light(ld, space);
@@ -134,7 +134,7 @@ Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options
   scene.camera = make_camera(desc.camera, desc.film, space);
   for (const auto& m : desc.materials) scene.materials.push_back(make_bsdf(m));
 
-  AccelGeometry geometry;
+  SceneSurfaces geometry;
   add_shapes(desc, space, geometry);
   add_lights(desc, space, scene, geometry);
   assign_light_groups(scene);
