@@ -26,13 +26,17 @@ struct CheckedLightType {
 template <typename... Types>
 using LightVariant = std::variant<typename CheckedLightType<Types>::type...>;
 
+// The closed set of light types.
+using LightTypes = LightVariant<QuadLight, PointLight, SpotLight, SunLight, EnvironmentLight>;
+
+template <typename T>
+concept OneOfTheLightTypes = std::constructible_from<LightTypes, T>;
+
 class Light {
  public:
-  using Variant = LightVariant<QuadLight, PointLight, SpotLight, SunLight, EnvironmentLight>;
-
-  template <typename T>
-  requires std::constructible_from<Variant, T&&> Light(T&& light)
-      : light_(std::forward<T>(light)) {}
+  // Implicit: any of the light types converts to a Light.
+  template <OneOfTheLightTypes T>
+  Light(T&& light) : light_(std::forward<T>(light)) {}
 
   std::optional<LightSample> sample(const Vec3& p, Vec2 u) const {
     return std::visit([&](const auto& l) { return l.sample(p, u); }, light_);
@@ -51,7 +55,7 @@ class Light {
   }
 
  private:
-  Variant light_;
+  LightTypes light_;
 };
 
 }  // namespace vesper
