@@ -1,6 +1,7 @@
 #pragma once
 // Progress for long work: a redrawn bar with ETA on a terminal, plain lines
-// (every 10%) when stderr is a pipe or a log file.
+// (every 10%) when stderr is a pipe or a log file; nothing when the log level
+// hides info messages (`-q`).
 #include <chrono>
 #include <cstddef>
 #include <mutex>
@@ -18,6 +19,7 @@ class Progress {
  private:
   std::string label_;
   bool tty_;
+  bool quiet_;
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, last_draw_;
   int last_decile_ = -1;
