@@ -73,7 +73,11 @@ FrameOutput::FrameOutput(const std::string& output, bool partial) : pattern_(out
     format_ = FrameFormat::Exr;
   } else if (display) {
     format_ = FrameFormat::DisplayImage;
-    display_ = std::make_unique<const Grader>(GradeDesc{}, DisplayDesc{});
+    try {  // the OCIO config ($OCIO or the bundled one): fails here, not after the render
+      display_ = std::make_unique<const Grader>(GradeDesc{}, DisplayDesc{});
+    } catch (const CompError& e) {
+      throw OutputError(output + ": " + e.what());
+    }
   } else {
     throw OutputError(output +
                       ": unknown output format; expected .exr (every layer) or .png, .jpg, .tif "

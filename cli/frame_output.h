@@ -31,9 +31,9 @@ enum class FrameFormat { Exr, DisplayImage, Partial };
 
 class FrameOutput {
  public:
-  // `output` as given to -o. Throws OutputError (unknown extension, missing or
-  // read-only folder, a folder as the output, '#' outside the file name) or
-  // CompError (the OCIO config of a display image).
+  // `output` as given to -o. Throws OutputError: unknown extension, missing or
+  // read-only folder, a folder as the output, '#' outside the file name, or
+  // (display images) no usable OCIO config.
   FrameOutput(const std::string& output, bool partial);
   ~FrameOutput();
 

@@ -11,7 +11,6 @@
 #include "cli/commands.h"
 #include "cli/frame_output.h"
 #include "cli/parent_watch.h"
-#include "compositor/rgba_image.h"
 #include "renderer/output/partial_io.h"
 
 namespace vesper::cli {
@@ -40,9 +39,6 @@ int run_merge(const MergeCommandOptions& o) {
     merged = merge_partials(parts);
     out_path = output->path(frame_of(merged));
   } catch (const OutputError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  } catch (const CompError& e) {  // the OCIO config of a display image
     spdlog::error("{}", e.what());
     return 2;
   } catch (const PartialError& e) {

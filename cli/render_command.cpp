@@ -9,7 +9,6 @@
 #include "cli/frame_output.h"
 #include "cli/parent_watch.h"
 #include "cli/progress.h"
-#include "compositor/rgba_image.h"
 #include "renderer/output/exr_io.h"
 #include "renderer/output/partial_io.h"
 #include "renderer/render/frame.h"
@@ -81,9 +80,6 @@ int run_render(const RenderCommandOptions& o) {
     spdlog::error("{}", e.what());
     return 2;
   } catch (const OutputError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  } catch (const CompError& e) {  // the OCIO config of a display image
     spdlog::error("{}", e.what());
     return 2;
   }
