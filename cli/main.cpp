@@ -98,9 +98,8 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
   r->add_option("--sample-end", o->sample_end, "One past the last sample index (default: spp)")
       ->check(at_least(0));
   r->add_option("--frame", o->frame,
-                "Frame number: decorrelates this frame's noise from other frames' (same scene, "
-                "same seed); fills #### in -o")
-      ->check(at_least(0));
+                "Frame number (may be negative): decorrelates this frame's noise from other "
+                "frames' (same scene, same seed); fills #### in -o");
   r->add_flag("--partial", o->partial,
               "Write a partial render (exact sample sums) for `vesper merge` instead of an EXR");
   add_quiet(r, &o->quiet);

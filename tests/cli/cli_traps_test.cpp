@@ -71,7 +71,7 @@ TEST_F(CliTraps, ZeroSamplesAndNegativeSeedsNameTheBound) {
   EXPECT_NE(seed.err.find("--seed: must be at least 0"), std::string::npos) << seed.err;
   EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
 
-  for (const char* flag : {"--threads 0", "--sample-begin -1", "--frame -2"})
+  for (const char* flag : {"--threads 0", "--sample-begin -1", "--sample-end -1"})
     EXPECT_EQ(run(render("-o " + out("x.exr") + " " + flag)).exit_code, 2) << flag;
   // The full unsigned 64-bit seed range still works.
   EXPECT_EQ(run(render("-o " + out("x.exr") + " --spp 1 -q --seed 18446744073709551615")).exit_code,
