@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/nearest_name.h"
+#include "cli/progress.h"
 
 namespace vesper::cli {
 namespace {
@@ -64,14 +65,15 @@ CLI::Validator greater_than_zero() {
           "> 0"};
 }
 
-// -q on every command: warnings and errors only (no info lines, no progress:
-// Progress follows the log level); stdout, which carries results, is unchanged.
+// -q on every command: warnings and errors only, no progress; stdout, which
+// carries results, is unchanged.
 void add_quiet(CLI::App* sub, bool* field = nullptr) {
   sub->add_flag_callback(
       "-q,--quiet",
       [field] {
         if (field) *field = true;
         spdlog::set_level(spdlog::level::warn);
+        silence_progress();
       },
       "Quiet: print results only (no progress or info logs)");
 }

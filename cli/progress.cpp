@@ -1,16 +1,21 @@
 #include "cli/progress.h"
 
-#include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 
 namespace vesper::cli {
+namespace {
+std::atomic<bool> g_silenced{false};
+}  // namespace
+
+void silence_progress() { g_silenced = true; }
 
 Progress::Progress(std::string label)
     : label_(std::move(label)),
       tty_(::isatty(STDERR_FILENO) != 0),
-      quiet_(!spdlog::default_logger_raw()->should_log(spdlog::level::info)),
+      quiet_(g_silenced),
       start_(std::chrono::steady_clock::now()) {}
 
 namespace {

@@ -167,4 +167,18 @@ TEST_F(CliTraps, QuietIsAcceptedByEveryCommand) {
   EXPECT_FALSE(loud.err.empty());
 }
 
+// `vesper up` hides its workers' info logs while it runs, but its progress
+// shows; with -q neither does, and stdout still lists the frames.
+TEST_F(CliTraps, UpShowsProgressUnlessQuiet) {
+  const std::string up = "up --scene " + kCornell + " --spp 1 --no-comp --data-dir " + out("farm") +
+                         " -o " + out("frames");
+  const RunResult loud = run(up);
+  ASSERT_EQ(loud.exit_code, 0) << loud.err;
+  EXPECT_NE(loud.err.find("job 1: 100%"), std::string::npos) << loud.err;
+  const RunResult quiet = run(up + " -q");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.out, out("frames/cornell.0001.exr") + "\n");
+  EXPECT_TRUE(quiet.err.empty()) << quiet.err;
+}
+
 }  // namespace
