@@ -4,9 +4,9 @@
 #include <climits>
 #include <set>
 
+#include "common/sha256.h"
 #include "jobs/frame_range.h"
 #include "server/api_error.h"
-#include "server/sha256.h"
 
 namespace vesper {
 

@@ -21,13 +21,14 @@
 #include <sstream>
 #include <thread>
 
+#include "common/secret_token.h"
+#include "common/sha256.h"
 #include "jobs/job_store.h"
 #include "server/api_error.h"
 #include "server/blob_store.h"
 #include "server/json_body.h"
 #include "server/merge.h"
 #include "server/metrics.h"
-#include "server/sha256.h"
 #include "server/tokens.h"
 #include "server/worker_registry.h"
 
