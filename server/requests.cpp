@@ -5,11 +5,11 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "common/sha256.h"
 #include "jobs/frame_range.h"
 #include "protocol/fields.h"
 #include "server/api_error.h"
 #include "server/json_body.h"
-#include "server/sha256.h"
 
 namespace vesper {
 
