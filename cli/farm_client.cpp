@@ -5,7 +5,7 @@
 #include <iterator>
 
 #include "cli/local_server.h"
-#include "worker/file_hash.h"
+#include "common/sha256.h"
 #include "worker/http_client.h"
 
 namespace vesper::cli {
@@ -89,7 +89,7 @@ std::string FarmClient::get_text(const std::string& path) {
 }
 
 std::string FarmClient::put_blob(const std::filesystem::path& file) {
-  const auto sha = worker_detail::sha256_file(file);
+  const auto sha = sha256_file(file);
   if (!sha) throw FarmClientError(file.string() + ": cannot read");
   // Content-addressed: a blob the server has is not sent again.
   if (http_->head(std::string(kApi) + "/blobs/" + *sha).status == 200) return *sha;
