@@ -4,7 +4,8 @@
 #include <fstream>
 #include <iterator>
 
-#include "worker/file_hash.h"
+#include "cli/local_server.h"
+#include "common/sha256.h"
 #include "worker/http_client.h"
 
 namespace vesper::cli {
@@ -48,12 +49,14 @@ std::string resolve_server_url(const FarmSettings& settings,
   return settings.worker.server;
 }
 
-std::string resolve_token(const FarmSettings& settings, const std::optional<std::string>& token,
-                          TokenRole role) {
+std::string resolve_token(const FarmSettings& settings, const std::string& server_url,
+                          const std::optional<std::string>& token, TokenRole role) {
   if (token) return *token;
   const char* var = role == TokenRole::Submitter ? "VESPER_TOKEN" : "VESPER_WORKER_TOKEN";
   if (const char* v = env(var)) return v;
-  const std::filesystem::path file = expand_user(settings.server.data_dir) / "tokens.json";
+  const std::filesystem::path file =
+      local_server_data_dir(server_url).value_or(expand_user(settings.server.data_dir)) /
+      "tokens.json";
   const char* key = role == TokenRole::Submitter ? "submitter" : "worker";
   std::ifstream in(file);
   const bool readable = bool(in);
@@ -86,7 +89,7 @@ std::string FarmClient::get_text(const std::string& path) {
 }
 
 std::string FarmClient::put_blob(const std::filesystem::path& file) {
-  const auto sha = worker_detail::sha256_file(file);
+  const auto sha = sha256_file(file);
   if (!sha) throw FarmClientError(file.string() + ": cannot read");
   // Content-addressed: a blob the server has is not sent again.
   if (http_->head(std::string(kApi) + "/blobs/" + *sha).status == 200) return *sha;

@@ -9,7 +9,7 @@
 #include "cli/commands.h"
 #include "cli/fetch.h"
 #include "cli/job_watch.h"
-#include "worker/file_hash.h"
+#include "common/sha256.h"
 
 namespace vesper::cli {
 namespace {
@@ -19,8 +19,8 @@ template <typename Body>
 int with_client(const JobCommandOptions& o, Body&& body) {
   try {
     const FarmSettings settings = load_farm_settings(o.farm.config);
-    FarmClient client(resolve_server_url(settings, o.farm.server),
-                      resolve_token(settings, o.farm.token, TokenRole::Submitter));
+    const std::string url = resolve_server_url(settings, o.farm.server);
+    FarmClient client(url, resolve_token(settings, url, o.farm.token, TokenRole::Submitter));
     return body(client);
   } catch (const FarmConfigError& e) {
     spdlog::error("{}", e.what());
@@ -72,7 +72,7 @@ FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesys
     const std::filesystem::path file = dir / fmt::format("{}.{:04d}.exr", name, frame);
     client.download(base + "/frames/" + std::to_string(frame), file);
     if (f.contains("blob")) {
-      const auto sha = worker_detail::sha256_file(file);
+      const auto sha = sha256_file(file);
       if (!sha || *sha != f.at("blob").get<std::string>()) {
         std::filesystem::remove(file);
         throw FarmClientError(file.string() + ": downloaded frame does not match its hash");

@@ -12,8 +12,8 @@
 #include <random>
 #include <thread>
 
+#include "common/sha256.h"
 #include "jobs/child_process.h"
-#include "worker/file_hash.h"
 #include "worker/http_client.h"
 #include "worker/render_progress.h"
 #include "worker/task_dir.h"
@@ -157,7 +157,7 @@ int Worker::run() {
     return 1;
   }
   if (cfg.name.empty()) cfg.name = hostname();
-  if (cfg.reuse_results) w.renderer_id = worker_detail::sha256_file(cfg.vesper_binary).value_or("");
+  if (cfg.reuse_results) w.renderer_id = sha256_file(cfg.vesper_binary).value_or("");
   if (cfg.cache_dir.empty()) cfg.cache_dir = fs::temp_directory_path() / "vesper-worker-cache";
   std::error_code ec;
   fs::create_directories(cfg.cache_dir / "tmp", ec);
@@ -265,9 +265,9 @@ int Worker::run() {
     // the hash matches.
     auto fetch = [&](const std::string& blob, const fs::path& file,
                      const std::string& what) -> std::string {
-      if (!worker_detail::is_blob_name(blob))
+      if (!is_sha256_hex(blob))
         return "the lease names a malformed " + what + " hash '" + blob + "'";
-      if (worker_detail::sha256_file(file) == blob) return {};
+      if (sha256_file(file) == blob) return {};
       const fs::path part =
           cfg.cache_dir / "tmp" /
           (blob + "." + w.instance + "." + std::to_string(++w.render_counter) + ".part");
@@ -275,7 +275,7 @@ int Worker::run() {
       std::string problem;
       if (g.status != 200)
         problem = "download of " + what + " blob " + blob + " failed: " + describe(g);
-      else if (const auto got = worker_detail::sha256_file(part); got != blob)
+      else if (const auto got = sha256_file(part); got != blob)
         problem = "downloaded " + what + " blob does not match its hash: expected " + blob +
                   ", got " + got.value_or("(unreadable)");
       else
@@ -402,7 +402,7 @@ int Worker::run() {
     w.durations[duration_key] = seconds;
 
     // 3b. Upload the result (content addressed) and complete.
-    const auto result = worker_detail::sha256_file(out);
+    const auto result = sha256_file(out);
     bool uploaded = false;
     std::string upload_problem = "cannot read " + out.string();
     for (int tries = 0; result && tries < 3 && !uploaded; ++tries) {

@@ -34,9 +34,9 @@
 #include <vector>
 
 #include "bench/farm/dispatch_run.h"
+#include "common/sha256.h"
 #include "jobs/job_store.h"
 #include "server/server.h"
-#include "server/sha256.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

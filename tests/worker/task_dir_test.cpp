@@ -9,8 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/sha256.h"
 #include "tests/common/temp_dir.h"
-#include "worker/file_hash.h"
 
 namespace fs = std::filesystem;
 
