@@ -1,0 +1,39 @@
+#include "worker/render_command.h"
+
+namespace vesper::worker_detail {
+
+std::vector<std::string> render_command(const LeasedTask& task, const WorkerConfig& config,
+                                        const std::filesystem::path& scene_file,
+                                        const std::filesystem::path& output) {
+  std::vector<std::string> argv = {config.vesper_binary.string(),
+                                   "render",
+                                   scene_file.string(),
+                                   "-o",
+                                   output.string(),
+                                   "--spp",
+                                   std::to_string(task.spp),
+                                   "--sample-begin",
+                                   std::to_string(task.sample_begin),
+                                   "--sample-end",
+                                   std::to_string(task.sample_end),
+                                   "--frame",
+                                   std::to_string(task.frame)};
+  if (task.partial()) argv.push_back("--partial");
+  if (config.render_threads > 0) {
+    argv.push_back("--threads");
+    argv.push_back(std::to_string(config.render_threads));
+  }
+  return argv;
+}
+
+std::string render_output_extension(const LeasedTask& task) {
+  return task.partial() ? ".vpartial" : ".exr";
+}
+
+std::string command_line(const std::vector<std::string>& argv) {
+  std::string line;
+  for (const auto& a : argv) line += (line.empty() ? "" : " ") + a;
+  return line;
+}
+
+}  // namespace vesper::worker_detail

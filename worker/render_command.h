@@ -1,0 +1,28 @@
+#pragma once
+// The one place the worker's child render command line is built.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "worker/leased_task.h"
+#include "worker/worker.h"
+
+namespace vesper::worker_detail {
+
+// `vesper render <scene_file> -o <output> --spp S --sample-begin B
+// --sample-end E --frame F [--partial] [--threads N]`. No --seed: the
+// renderer takes the scene's own render.seed, and --frame decorrelates the
+// frames from it, exactly as a local `vesper render --frame F` does. No -q:
+// the render's plain progress lines on stderr feed the heartbeat's progress
+// and give failure logs context.
+std::vector<std::string> render_command(const LeasedTask& task, const WorkerConfig& config,
+                                        const std::filesystem::path& scene_file,
+                                        const std::filesystem::path& output);
+
+// ".vpartial" for a sample range that is not the whole frame, else ".exr".
+std::string render_output_extension(const LeasedTask& task);
+
+// argv joined with spaces, for logs.
+std::string command_line(const std::vector<std::string>& argv);
+
+}  // namespace vesper::worker_detail
