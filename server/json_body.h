@@ -9,8 +9,6 @@
 #include <optional>
 #include <string>
 
-#include "jobs/job.h"
-
 namespace vesper {
 
 nlohmann::json parse_json_body(const std::string& body);
@@ -34,21 +32,5 @@ class JsonObject {
   const nlohmann::json& j_;
   std::string path_;
 };
-
-// A submitted job: {"name", "scene", "frames", "spp", "samples_per_task",
-// "priority", "max_attempts", "assets"}. `frames` is a frame-range string ("1-10x2",
-// "1,5,9") or an array of integers; `scene` must be a SHA-256 (the existence
-// of the blob is checked by the server). Limits: spp <= 1<<20, at most
-// kMaxTasksPerJob tasks.
-constexpr int64_t kMaxTasksPerJob = 100000;
-constexpr int64_t kMaxAssetsPerJob = 10000;
-// "assets": [{"name": "assets/cube.obj", "blob": "<sha256>"}, ...]: names are
-// checked by asset_name_problem (jobs/job.h), unique, not "scene.json", and
-// no name is the directory of another; blobs are SHA-256 spellings (their
-// existence is checked by the server). Errors name "/assets/3/name" etc.
-std::vector<Asset> parse_assets(const nlohmann::json& assets);
-JobSpec parse_job_request(const nlohmann::json& body);
-// Tasks `spec` splits into (what the store will create).
-int64_t task_count(const JobSpec& spec);
 
 }  // namespace vesper

@@ -1,0 +1,38 @@
+#include "server/ops_handlers.h"
+
+#include "server/locked_store.h"
+#include "server/metrics.h"
+#include "server/worker_registry.h"
+
+namespace vesper {
+
+void OpsHandlers::add_to(HandlerTable& table) {
+  table[protocol::Endpoint::Healthz] = [](const ApiRequest&) {
+    return text_response("ok\n", "text/plain");
+  };
+  table[protocol::Endpoint::Metrics] = [this](const ApiRequest& r) { return metrics(r); };
+}
+
+ApiResponse OpsHandlers::metrics(const ApiRequest&) {
+  MetricsSnapshot m;
+  for (TaskState s : {TaskState::Queued, TaskState::Leased, TaskState::Done, TaskState::Failed,
+                      TaskState::Canceled, TaskState::Paused})
+    m.tasks_by_state[to_string(s)] = 0;
+  store_.with([&](JobStore& s) {
+    const auto jobs = s.jobs();
+    m.jobs = int64_t(jobs.size());
+    for (const auto& j : jobs) {
+      m.tasks_by_state[to_string(TaskState::Queued)] += j.queued;
+      m.tasks_by_state[to_string(TaskState::Leased)] += j.leased;
+      m.tasks_by_state[to_string(TaskState::Done)] += j.done;
+      m.tasks_by_state[to_string(TaskState::Failed)] += j.failed;
+      m.tasks_by_state[to_string(TaskState::Canceled)] += j.canceled;
+      m.tasks_by_state[to_string(TaskState::Paused)] += j.paused;
+    }
+  });
+  m.workers = int64_t(workers_.list().size());
+  counters_.fill(m);
+  return text_response(prometheus_text(m), "text/plain; version=0.0.4; charset=utf-8");
+}
+
+}  // namespace vesper
