@@ -10,6 +10,8 @@
 #include "cli/scene_package.h"
 #include "cli/submit.h"
 #include "jobs/frame_range.h"
+#include "protocol/job_messages.h"
+#include "protocol/paths.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace vesper::cli {
@@ -108,12 +110,12 @@ Submitted submit_job(FarmClient& client, const JobRequest& r, bool dry_run) {
   parse_frame_range(r.frames);
   const PackedScene packed = pack_scene(r.scene);
 
-  nlohmann::json assets = nlohmann::json::array();
+  protocol::SubmitRequest body;
   for (const PackedAsset& a : packed.assets) {
     const std::string sha = client.put_blob(a.local);
     if (sha != a.sha256)
       throw FarmClientError(a.local.string() + ": changed while it was being submitted");
-    assets.push_back({{"name", a.name}, {"blob", sha}});
+    body.assets.push_back({a.name, sha});
   }
   TempFile tmp{std::filesystem::temp_directory_path() /
                ("vesper-submit-" + std::to_string(::getpid()) + ".json")};
@@ -122,20 +124,25 @@ Submitted submit_job(FarmClient& client, const JobRequest& r, bool dry_run) {
     out << packed.json;
     if (!out.flush()) throw FarmClientError(tmp.path.string() + ": cannot write");
   }
-  const std::string scene_blob = client.put_blob(tmp.path);
+  body.scene = client.put_blob(tmp.path);
+  body.name = r.name;
+  body.frames = r.frames;
+  body.spp = r.spp > 0 ? r.spp : desc.render.spp;
+  body.samples_per_task = r.samples_per_task;
+  body.priority = r.priority;
+  body.max_attempts = r.max_attempts;
 
-  nlohmann::json body = {{"name", r.name},
-                         {"scene", scene_blob},
-                         {"frames", r.frames},
-                         {"spp", r.spp > 0 ? r.spp : desc.render.spp},
-                         {"samples_per_task", r.samples_per_task},
-                         {"priority", r.priority},
-                         {"max_attempts", r.max_attempts}};
-  if (!assets.empty()) body["assets"] = assets;
-  const nlohmann::json answer = client.post_json(dry_run ? "/jobs?dry_run=1" : "/jobs", body);
+  std::string path(protocol::paths::kJobs);
+  if (dry_run) path += "?" + std::string(protocol::kDryRunParam) + "=1";
+  const nlohmann::json answer = client.post_json(path, body);
   Submitted s;
-  s.id = dry_run ? 0 : answer.at("id").get<long long>();
-  s.task_count = answer.at("task_count").get<int>();
+  if (dry_run) {
+    s.task_count = int(answer.get<protocol::DryRunResponse>().task_count);
+  } else {
+    const auto created = answer.get<protocol::SubmitResponse>();
+    s.id = created.id;
+    s.task_count = int(created.task_count);
+  }
   return s;
 }
 
@@ -166,9 +173,9 @@ int run_submit(const SubmitCommandOptions& o) {
     std::printf("%lld\n", s.id);
     std::fflush(stdout);
     if (!o.wait) return 0;
-    const nlohmann::json j = wait_for_job(client, s.id);
+    const protocol::JobDetail j = wait_for_job(client, s.id);
     spdlog::info("{}", describe_job(j));
-    return j.at("counts").at("done").get<int>() == j.at("total").get<int>() ? 0 : 3;
+    return j.summary.counts.done == j.summary.total ? 0 : 3;
   } catch (const SceneError& e) {
     spdlog::error("{}", e.what());
     return 2;

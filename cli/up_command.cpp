@@ -21,6 +21,8 @@
 #include "compositor/comp_run.h"
 #include "compositor/recipe.h"
 #include "jobs/frame_range.h"
+#include "protocol/job_messages.h"
+#include "protocol/paths.h"
 #include "renderer/scene/scene_loader.h"
 #include "server/server.h"
 #include "worker/worker.h"
@@ -164,20 +166,20 @@ int run_up(const UpCommandOptions& o) {
   // 3. Submit, wait, fetch.
   int rc = 0;
   FetchedFrames fetched;
-  nlohmann::json final_state;
+  protocol::JobDetail final_state;
   try {
     FarmClient client(server->url(), server->submitter_token());
     // An interrupted earlier `vesper up` may have left unfinished jobs here:
     // they would take the workers first. Its finished work stays (and is
     // reused where the inputs are the same).
-    const nlohmann::json previous = client.get_json("/jobs");
-    for (const auto& j : previous.at("jobs"))
-      if (!j.at("finished").get<bool>() && j.at("state") != "canceled") {
-        client.post_json("/jobs/" + std::to_string(j.at("id").get<long long>()) + "/cancel",
+    const auto previous =
+        client.get_json(std::string(protocol::paths::kJobs)).get<protocol::JobList>();
+    for (const protocol::JobSummary& j : previous.jobs)
+      if (!j.finished && j.state != "canceled") {
+        client.post_json(protocol::job_action_path(j.id, protocol::JobAction::Cancel),
                          nlohmann::json::object());
-        spdlog::warn("canceled job {} '{}' left unfinished by an earlier `vesper up` in {}",
-                     j.at("id").get<long long>(), j.at("name").get<std::string>(),
-                     data_dir.string());
+        spdlog::warn("canceled job {} '{}' left unfinished by an earlier `vesper up` in {}", j.id,
+                     j.name, data_dir.string());
       }
     const Submitted s = submit_job(client, request);
     spdlog::set_level(level);
@@ -190,8 +192,8 @@ int run_up(const UpCommandOptions& o) {
       spdlog::warn(
           "interrupted: {}; kept in {} (`vesper server --data-dir {}` serves it, "
           "`vesper fetch` gets its frames)",
-          describe_job(client.get_json("/jobs/" + std::to_string(s.id))), data_dir.string(),
-          data_dir.string());
+          describe_job(client.get_json(protocol::job_path(s.id)).get<protocol::JobDetail>()),
+          data_dir.string(), data_dir.string());
       return 130;
     }
     spdlog::info("{}", describe_job(final_state));

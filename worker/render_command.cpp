@@ -2,7 +2,12 @@
 
 namespace vesper::worker_detail {
 
-std::vector<std::string> render_command(const LeasedTask& task, const WorkerConfig& config,
+bool renders_partial(const protocol::LeaseResponse& lease) {
+  return lease.task.sample_begin != 0 || lease.task.sample_end != lease.spp;
+}
+
+std::vector<std::string> render_command(const protocol::LeaseResponse& lease,
+                                        const WorkerConfig& config,
                                         const std::filesystem::path& scene_file,
                                         const std::filesystem::path& output) {
   std::vector<std::string> argv = {config.vesper_binary.string(),
@@ -11,14 +16,14 @@ std::vector<std::string> render_command(const LeasedTask& task, const WorkerConf
                                    "-o",
                                    output.string(),
                                    "--spp",
-                                   std::to_string(task.spp),
+                                   std::to_string(lease.spp),
                                    "--sample-begin",
-                                   std::to_string(task.sample_begin),
+                                   std::to_string(lease.task.sample_begin),
                                    "--sample-end",
-                                   std::to_string(task.sample_end),
+                                   std::to_string(lease.task.sample_end),
                                    "--frame",
-                                   std::to_string(task.frame)};
-  if (task.partial()) argv.push_back("--partial");
+                                   std::to_string(lease.task.frame)};
+  if (renders_partial(lease)) argv.push_back("--partial");
   if (config.render_threads > 0) {
     argv.push_back("--threads");
     argv.push_back(std::to_string(config.render_threads));
@@ -26,8 +31,8 @@ std::vector<std::string> render_command(const LeasedTask& task, const WorkerConf
   return argv;
 }
 
-std::string render_output_extension(const LeasedTask& task) {
-  return task.partial() ? ".vpartial" : ".exr";
+std::string render_output_extension(const protocol::LeaseResponse& lease) {
+  return renders_partial(lease) ? ".vpartial" : ".exr";
 }
 
 std::string command_line(const std::vector<std::string>& argv) {

@@ -18,8 +18,7 @@ void pause_before_retry(int tries) {
 
 }  // namespace
 
-Upload upload_result(ServerApi& api, const std::filesystem::path& file,
-                     const std::string& task_id) {
+Upload upload_result(ServerApi& api, const std::filesystem::path& file, int64_t task_id) {
   Upload up;
   const auto sha = sha256_file(file);
   if (!sha) {
@@ -40,9 +39,9 @@ Upload upload_result(ServerApi& api, const std::filesystem::path& file,
 }
 
 Completion complete_task(ServerApi& api, const std::string& lease_id, const std::string& result,
-                         const std::string& task_id) {
+                         int64_t task_id) {
   for (int tries = 0; tries < kTries; ++tries) {
-    const HttpResponse c = api.complete(lease_id, result);
+    const HttpResponse c = api.complete({lease_id, result});
     if (c.status == 200) return Completion::Completed;
     if (c.status == 409) {
       spdlog::info("task {}: complete refused, lease is stale ({})", task_id, describe(c));

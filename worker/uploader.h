@@ -2,6 +2,7 @@
 // The worker's last two states: upload the result as a content-addressed
 // blob, then complete the task with it. Both retry what may get better
 // (transport errors, 5xx) a few times.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -16,7 +17,7 @@ struct Upload {
 };
 
 // PUT /blobs/<sha256 of file> (3 tries). `task_id` labels the log lines.
-Upload upload_result(ServerApi& api, const std::filesystem::path& file, const std::string& task_id);
+Upload upload_result(ServerApi& api, const std::filesystem::path& file, int64_t task_id);
 
 enum class Completion {
   Completed,
@@ -26,6 +27,6 @@ enum class Completion {
 
 // POST /complete with the result blob (3 tries).
 Completion complete_task(ServerApi& api, const std::string& lease_id, const std::string& result,
-                         const std::string& task_id);
+                         int64_t task_id);
 
 }  // namespace vesper::worker_detail

@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "protocol/worker_messages.h"
 #include "worker/backoff.h"
 #include "worker/blob_cache.h"
 #include "worker/file_hash.h"
-#include "worker/leased_task.h"
 #include "worker/render_command.h"
 #include "worker/server_api.h"
 #include "worker/task_dir.h"
@@ -83,12 +83,13 @@ struct Worker::Impl {
   bool start();
   WorkerState register_worker();
   WorkerState lease();
-  void work_on(const LeasedTask& t);
-  std::optional<fs::path> fetch(const LeasedTask& t);
-  std::optional<fs::path> run(const LeasedTask& t, const fs::path& task_dir, double& seconds);
-  bool heartbeat(const LeasedTask& t, double progress);
-  void upload_and_complete(const LeasedTask& t, const fs::path& out, double seconds);
-  void fail(const LeasedTask& t, const std::string& log);
+  void work_on(const protocol::LeaseResponse& l);
+  std::optional<fs::path> fetch(const protocol::LeaseResponse& l);
+  std::optional<fs::path> run(const protocol::LeaseResponse& l, const fs::path& task_dir,
+                              double& seconds);
+  bool heartbeat(const protocol::LeaseResponse& l, double progress);
+  void upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out, double seconds);
+  void fail(const protocol::LeaseResponse& l, const std::string& log);
 };
 
 Worker::Worker(WorkerConfig config) : impl_(std::make_unique<Impl>(*this, std::move(config))) {}
@@ -149,11 +150,11 @@ bool Worker::Impl::start() {
 WorkerState Worker::Impl::register_worker() {
   for (;;) {
     if (stopping()) return WorkerState::Stopped;
-    const HttpResponse r = api->register_worker(cfg.name);
+    const HttpResponse r = api->register_worker({cfg.name});
     if (r.status == 200 || r.status == 201) {
       try {
         std::lock_guard<std::mutex> lock(id_mutex);
-        worker_id = json::parse(r.body).at("worker_id").get<std::string>();
+        worker_id = json::parse(r.body).get<protocol::RegisterResponse>().worker_id;
       } catch (const std::exception& e) {
         spdlog::error("worker: bad register answer: {}", e.what());
         return WorkerState::Fatal;
@@ -180,7 +181,7 @@ WorkerState Worker::Impl::lease() {
   const auto back_off = [&] {
     return backoff.sleep(self.stop_) ? WorkerState::Lease : WorkerState::Stopped;
   };
-  const HttpResponse r = api->lease(self.worker_id(), renderer_id);
+  const HttpResponse r = api->lease({self.worker_id(), renderer_id});
   if (r.status == 204) return cfg.exit_when_idle ? WorkerState::Stopped : back_off();
   if (r.status == 404) {
     spdlog::warn("worker: the server does not know worker {}; registering again", self.worker_id());
@@ -195,70 +196,74 @@ WorkerState Worker::Impl::lease() {
     return back_off();
   }
   backoff.reset();
-  LeasedTask t;
+  protocol::LeaseResponse lease;
   try {
-    t = parse_lease(json::parse(r.body));
+    lease = json::parse(r.body).get<protocol::LeaseResponse>();
   } catch (const std::exception& e) {
     spdlog::error("worker: bad lease answer ({}): {}", e.what(), r.body);
     return back_off();
   }
   ++leased;
-  work_on(t);
+  work_on(lease);
   return WorkerState::Lease;
 }
 
 // fetch → run → upload → complete; a problem at any step fails the task
 // (the worker carries on).
-void Worker::Impl::work_on(const LeasedTask& t) {
-  spdlog::info("task {} (job {}, frame {}, samples [{}, {}) of {}, attempt {}): leased", t.id,
-               t.job_id, t.frame, t.sample_begin, t.sample_end, t.spp, t.attempt);
-  const std::optional<fs::path> task_dir = fetch(t);
+void Worker::Impl::work_on(const protocol::LeaseResponse& l) {
+  spdlog::info("task {} (job {}, frame {}, samples [{}, {}) of {}, attempt {}): leased", l.task.id,
+               l.task.job_id, l.task.frame, l.task.sample_begin, l.task.sample_end, l.spp,
+               l.task.attempt);
+  const std::optional<fs::path> task_dir = fetch(l);
   if (!task_dir) return;
   double seconds = 0;
-  const std::optional<fs::path> out = run(t, *task_dir, seconds);
+  const std::optional<fs::path> out = run(l, *task_dir, seconds);
   if (!out) return;
-  upload_and_complete(t, *out, seconds);
+  upload_and_complete(l, *out, seconds);
 }
 
 // The scene and its assets, from the verified cache, in a task directory.
-std::optional<fs::path> Worker::Impl::fetch(const LeasedTask& t) {
+std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l) {
   std::string problem =
-      cache->fetch(t.scene, cfg.cache_dir / (t.scene + ".json"), "scene", unique_name());
-  for (size_t i = 0; problem.empty() && i < t.assets.size(); ++i)
-    problem = cache->fetch(t.assets[i].blob, asset_cache_file(cfg.cache_dir, t.assets[i].blob),
-                           "asset '" + t.assets[i].name + "'", unique_name());
+      cache->fetch(l.scene, cfg.cache_dir / (l.scene + ".json"), "scene", unique_name());
+  for (size_t i = 0; problem.empty() && i < l.assets.size(); ++i)
+    problem = cache->fetch(l.assets[i].blob, asset_cache_file(cfg.cache_dir, l.assets[i].blob),
+                           "asset '" + l.assets[i].name + "'", unique_name());
   if (problem.empty()) {
     try {
-      return materialise_task_dir(cfg.cache_dir, t.scene, t.assets, unique_name());
+      std::vector<Asset> assets;  // the job store's spelling of the lease's assets
+      for (const protocol::AssetRef& a : l.assets) assets.push_back({a.name, a.blob});
+      return materialise_task_dir(cfg.cache_dir, l.scene, assets, unique_name());
     } catch (const std::exception& e) {
       problem = std::string("cannot prepare the task directory: ") + e.what();
     }
   }
-  spdlog::error("task {}: {}", t.id, problem);
-  fail(t, "worker: " + problem);
+  spdlog::error("task {}: {}", l.task.id, problem);
+  fail(l, "worker: " + problem);
   return std::nullopt;
 }
 
 // Renders in a child process, heartbeating; returns the output file, or
 // nullopt when the task was dropped or failed (then reported and cleaned up).
-std::optional<fs::path> Worker::Impl::run(const LeasedTask& t, const fs::path& task_dir,
-                                          double& seconds) {
+std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
+                                          const fs::path& task_dir, double& seconds) {
   const fs::path out =
-      cfg.cache_dir / "tmp" / ("render-" + unique_name() + render_output_extension(t));
-  const std::vector<std::string> argv = render_command(t, cfg, task_dir / "scene.json", out);
-  const std::string duration_key = t.scene + ":" + std::to_string(t.sample_end - t.sample_begin);
+      cfg.cache_dir / "tmp" / ("render-" + unique_name() + render_output_extension(l));
+  const std::vector<std::string> argv = render_command(l, cfg, task_dir / "scene.json", out);
+  const std::string duration_key =
+      l.scene + ":" + std::to_string(l.task.sample_end - l.task.sample_begin);
   RenderWatch watch;
-  watch.heartbeat_seconds = std::max(0.05, std::min(cfg.heartbeat_seconds, t.lease_seconds / 3));
+  watch.heartbeat_seconds = std::max(0.05, std::min(cfg.heartbeat_seconds, l.lease_seconds / 3));
   watch.kill_grace_seconds = cfg.kill_grace_seconds;
   watch.log_tail_bytes = kLogTail;
   if (auto it = durations.find(duration_key); it != durations.end())
     watch.expected_seconds = it->second;
-  const RenderRun r = run_render(argv, watch, [&](double p) { return heartbeat(t, p); });
+  const RenderRun r = run_render(argv, watch, [&](double p) { return heartbeat(l, p); });
   seconds = r.seconds;
   std::error_code ec;
   if (r.end == RenderRun::End::NotStarted) {
-    spdlog::error("task {}: {}", t.id, r.status);
-    fail(t, "worker: " + r.status + "\n" + command_line(argv));
+    spdlog::error("task {}: {}", l.task.id, r.status);
+    fail(l, "worker: " + r.status + "\n" + command_line(argv));
     return std::nullopt;
   }
   if (r.end == RenderRun::End::Dropped) {
@@ -268,8 +273,8 @@ std::optional<fs::path> Worker::Impl::run(const LeasedTask& t, const fs::path& t
   }
   if (!r.succeeded || !fs::exists(out)) {
     const std::string status = r.succeeded ? "exit code 0 but no output file" : r.status;
-    spdlog::warn("task {}: render failed ({}) after {:.2f} s", t.id, status, seconds);
-    fail(t, "vesper render failed: " + status + "\ncommand: " + command_line(argv) +
+    spdlog::warn("task {}: render failed ({}) after {:.2f} s", l.task.id, status, seconds);
+    fail(l, "vesper render failed: " + status + "\ncommand: " + command_line(argv) +
                 "\n--- stderr (tail) ---\n" + r.stderr_tail);
     fs::remove(out, ec);
     return std::nullopt;
@@ -280,35 +285,38 @@ std::optional<fs::path> Worker::Impl::run(const LeasedTask& t, const fs::path& t
 
 // One heartbeat; false when the render must stop ("stop": job canceled or
 // paused; 409: the lease is stale). A transport failure waits for the next beat.
-bool Worker::Impl::heartbeat(const LeasedTask& t, double progress) {
-  const HttpResponse hb = api->heartbeat(t.lease_id, progress);
-  std::string answer;
+bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress) {
+  const HttpResponse hb = api->heartbeat({l.lease_id, progress});
+  bool keep_running = true;
   if (hb.status == 200) {
-    const json j = json::parse(hb.body, nullptr, false);
-    if (j.is_object() && j.contains("answer") && j["answer"].is_string())
-      answer = j["answer"].get<std::string>();
+    try {
+      keep_running = json::parse(hb.body).get<protocol::HeartbeatResponse>().keep_running;
+    } catch (const json::exception&) {
+      // An answer this worker does not understand is not an order to stop.
+    }
   }
-  if (hb.status == 409 || answer == "stop") {
-    spdlog::info("task {}: {}; killing the render", t.id,
+  if (hb.status == 409 || !keep_running) {
+    spdlog::info("task {}: {}; killing the render", l.task.id,
                  hb.status == 409 ? "lease is stale" : "the server says stop");
     return false;
   }
-  if (hb.status != 200) spdlog::warn("task {}: heartbeat failed ({})", t.id, describe(hb));
+  if (hb.status != 200) spdlog::warn("task {}: heartbeat failed ({})", l.task.id, describe(hb));
   return true;
 }
 
 // Upload the result (content addressed), then complete; the temp file always goes.
-void Worker::Impl::upload_and_complete(const LeasedTask& t, const fs::path& out, double seconds) {
-  const Upload up = upload_result(*api, out, t.id);
+void Worker::Impl::upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out,
+                                       double seconds) {
+  const Upload up = upload_result(*api, out, l.task.id);
   std::error_code ec;
   fs::remove(out, ec);
   if (!up.blob) {
-    fail(t, "worker: upload of the result failed: " + up.problem);
+    fail(l, "worker: upload of the result failed: " + up.problem);
     return;
   }
-  switch (complete_task(*api, t.lease_id, *up.blob, t.id)) {
+  switch (complete_task(*api, l.lease_id, *up.blob, l.task.id)) {
     case Completion::Completed:
-      spdlog::info("task {}: done in {:.2f} s, result {}", t.id, seconds, *up.blob);
+      spdlog::info("task {}: done in {:.2f} s, result {}", l.task.id, seconds, *up.blob);
       ++self.completed_;
       break;
     case Completion::Stale:
@@ -319,12 +327,12 @@ void Worker::Impl::upload_and_complete(const LeasedTask& t, const fs::path& out,
   }
 }
 
-void Worker::Impl::fail(const LeasedTask& t, const std::string& log) {
-  const HttpResponse f = api->fail(t.lease_id, tail_of(log, kLogTail));
+void Worker::Impl::fail(const protocol::LeaseResponse& l, const std::string& log) {
+  const HttpResponse f = api->fail({l.lease_id, tail_of(log, kLogTail)});
   if (f.status == 409)
-    spdlog::info("task {}: fail refused, lease is stale", t.id);
+    spdlog::info("task {}: fail refused, lease is stale", l.task.id);
   else if (!f.ok())
-    spdlog::warn("task {}: could not report the failure ({})", t.id, describe(f));
+    spdlog::warn("task {}: could not report the failure ({})", l.task.id, describe(f));
   ++self.failed_;
 }
 

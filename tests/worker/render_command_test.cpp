@@ -9,12 +9,12 @@
 namespace vesper::worker_detail {
 namespace {
 
-LeasedTask task(int frame, int spp, int begin, int end) {
-  LeasedTask t;
-  t.frame = frame;
+protocol::LeaseResponse lease(int frame, int spp, int begin, int end) {
+  protocol::LeaseResponse t;
   t.spp = spp;
-  t.sample_begin = begin;
-  t.sample_end = end;
+  t.task.frame = frame;
+  t.task.sample_begin = begin;
+  t.task.sample_end = end;
   return t;
 }
 
@@ -26,7 +26,7 @@ WorkerConfig config(int threads) {
 }
 
 TEST(RenderCommand, WholeFrameRendersAnExrAtTheTasksFrame) {
-  const LeasedTask t = task(7, 16, 0, 16);
+  const protocol::LeaseResponse t = lease(7, 16, 0, 16);
   EXPECT_EQ(render_output_extension(t), ".exr");
   const std::vector<std::string> expected = {"/opt/vesper/bin/vesper",
                                              "render",
@@ -45,7 +45,7 @@ TEST(RenderCommand, WholeFrameRendersAnExrAtTheTasksFrame) {
 }
 
 TEST(RenderCommand, SampleRangeRendersAPartialWithTheWorkersThreads) {
-  const LeasedTask t = task(3, 16, 4, 8);
+  const protocol::LeaseResponse t = lease(3, 16, 4, 8);
   EXPECT_EQ(render_output_extension(t), ".vpartial");
   const std::vector<std::string> expected = {"/opt/vesper/bin/vesper",
                                              "render",
@@ -69,7 +69,7 @@ TEST(RenderCommand, SampleRangeRendersAPartialWithTheWorkersThreads) {
 TEST(RenderCommand, LeavesTheSeedToTheSceneAndTheProgressLinesOn) {
   // The renderer takes the scene's render.seed itself; -q would silence the
   // progress lines the heartbeat reports.
-  const auto argv = render_command(task(1, 4, 0, 4), config(1), "s.json", "r.exr");
+  const auto argv = render_command(lease(1, 4, 0, 4), config(1), "s.json", "r.exr");
   EXPECT_EQ(std::count(argv.begin(), argv.end(), "--seed"), 0);
   EXPECT_EQ(std::count(argv.begin(), argv.end(), "-q"), 0);
   EXPECT_EQ(command_line({"vesper", "render", "s.json"}), "vesper render s.json");
