@@ -25,45 +25,26 @@ WorkerConfig config(int threads) {
   return c;
 }
 
-TEST(RenderCommand, WholeFrameRendersAnExrAtTheTasksFrame) {
-  const protocol::LeaseResponse t = lease(7, 16, 0, 16);
-  EXPECT_EQ(render_output_extension(t), ".exr");
-  const std::vector<std::string> expected = {"/opt/vesper/bin/vesper",
-                                             "render",
-                                             "/c/jobs/k/scene.json",
-                                             "-o",
-                                             "/c/tmp/r.exr",
-                                             "--spp",
-                                             "16",
-                                             "--sample-begin",
-                                             "0",
-                                             "--sample-end",
-                                             "16",
-                                             "--frame",
-                                             "7"};
-  EXPECT_EQ(render_command(t, config(0), "/c/jobs/k/scene.json", "/c/tmp/r.exr"), expected);
-}
-
-TEST(RenderCommand, SampleRangeRendersAPartialWithTheWorkersThreads) {
-  const protocol::LeaseResponse t = lease(3, 16, 4, 8);
-  EXPECT_EQ(render_output_extension(t), ".vpartial");
-  const std::vector<std::string> expected = {"/opt/vesper/bin/vesper",
-                                             "render",
-                                             "s.json",
-                                             "-o",
-                                             "r.vpartial",
-                                             "--spp",
-                                             "16",
-                                             "--sample-begin",
-                                             "4",
-                                             "--sample-end",
-                                             "8",
-                                             "--frame",
-                                             "3",
-                                             "--partial",
-                                             "--threads",
-                                             "2"};
-  EXPECT_EQ(render_command(t, config(2), "s.json", "r.vpartial"), expected);
+// A whole frame renders an EXR; a sample range a partial (--partial), and the
+// worker's --threads are passed on.
+TEST(RenderCommand, FollowsTheTaskAndTheWorkerConfig) {
+  struct Case {
+    protocol::LeaseResponse lease;
+    int threads;
+    const char *extension, *argv;
+  };
+  const Case cases[] = {
+      {lease(7, 16, 0, 16), 0, ".exr",
+       "/opt/vesper/bin/vesper render s.json -o out --spp 16 --sample-begin 0 --sample-end 16 "
+       "--frame 7"},
+      {lease(3, 16, 4, 8), 2, ".vpartial",
+       "/opt/vesper/bin/vesper render s.json -o out --spp 16 --sample-begin 4 --sample-end 8 "
+       "--frame 3 --partial --threads 2"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(render_output_extension(c.lease), c.extension);
+    EXPECT_EQ(command_line(render_command(c.lease, config(c.threads), "s.json", "out")), c.argv);
+  }
 }
 
 TEST(RenderCommand, LeavesTheSeedToTheSceneAndTheProgressLinesOn) {
