@@ -2,8 +2,9 @@
 // The body of every error answer: {"error": "what went wrong and what was
 // expected", "path": "/json/pointer"}; `path` only when the error is about a
 // value in the request body.
-#include <nlohmann/json_fwd.hpp>
 #include <string>
+
+#include "protocol/json_conversions.h"
 
 namespace vesper::protocol {
 
@@ -12,7 +13,6 @@ struct ErrorBody {
   std::string path;  // RFC 6901 pointer; empty: left out
 };
 
-void to_json(nlohmann::json& j, const ErrorBody& m);
-void from_json(const nlohmann::json& j, ErrorBody& m);
+VESPER_JSON_CONVERSIONS(ErrorBody);
 
 }  // namespace vesper::protocol

@@ -3,9 +3,9 @@
 // submit, job summaries and details, tasks, actions, frames, the worker list
 // and blob uploads. Each converts to and from its JSON body with nlohmann's
 // to_json/from_json; from_json throws nlohmann::json::exception on a missing
-// key or wrong type. Optional fields are left out of the JSON when unset.
+// key or wrong type (it reads what to_json writes). Optional fields are left
+// out of the JSON when unset.
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <variant>
@@ -39,6 +39,7 @@ struct DryRunResponse {
   std::string name;
   int64_t frame_count = 0;
   int64_t task_count = 0;
+  bool dry_run = true;
 };
 
 struct JobCounts {
@@ -122,35 +123,20 @@ struct BlobStored {
   int64_t size = 0;
 };
 
-void to_json(nlohmann::json& j, const SubmitRequest& m);
-void from_json(const nlohmann::json& j, SubmitRequest& m);
-void to_json(nlohmann::json& j, const SubmitResponse& m);
-void from_json(const nlohmann::json& j, SubmitResponse& m);
-void to_json(nlohmann::json& j, const DryRunResponse& m);
-void from_json(const nlohmann::json& j, DryRunResponse& m);
-void to_json(nlohmann::json& j, const JobCounts& m);
-void from_json(const nlohmann::json& j, JobCounts& m);
-void to_json(nlohmann::json& j, const JobSummary& m);
-void from_json(const nlohmann::json& j, JobSummary& m);
-void to_json(nlohmann::json& j, const JobList& m);
-void from_json(const nlohmann::json& j, JobList& m);
-void to_json(nlohmann::json& j, const TaskInfo& m);
-void from_json(const nlohmann::json& j, TaskInfo& m);
-void to_json(nlohmann::json& j, const JobDetail& m);
-void from_json(const nlohmann::json& j, JobDetail& m);
-void to_json(nlohmann::json& j, const JobActionResponse& m);
-void from_json(const nlohmann::json& j, JobActionResponse& m);
-void to_json(nlohmann::json& j, const FrameState& m);
-void from_json(const nlohmann::json& j, FrameState& m);
-void to_json(nlohmann::json& j, const FrameInfo& m);
-void from_json(const nlohmann::json& j, FrameInfo& m);
-void to_json(nlohmann::json& j, const FrameList& m);
-void from_json(const nlohmann::json& j, FrameList& m);
-void to_json(nlohmann::json& j, const WorkerInfo& m);
-void from_json(const nlohmann::json& j, WorkerInfo& m);
-void to_json(nlohmann::json& j, const WorkerList& m);
-void from_json(const nlohmann::json& j, WorkerList& m);
-void to_json(nlohmann::json& j, const BlobStored& m);
-void from_json(const nlohmann::json& j, BlobStored& m);
+VESPER_JSON_CONVERSIONS(SubmitRequest);
+VESPER_JSON_CONVERSIONS(SubmitResponse);
+VESPER_JSON_CONVERSIONS(DryRunResponse);
+VESPER_JSON_CONVERSIONS(JobCounts);
+VESPER_JSON_CONVERSIONS(JobSummary);
+VESPER_JSON_CONVERSIONS(JobList);
+VESPER_JSON_CONVERSIONS(TaskInfo);
+VESPER_JSON_CONVERSIONS(JobDetail);
+VESPER_JSON_CONVERSIONS(JobActionResponse);
+VESPER_JSON_CONVERSIONS(FrameState);
+VESPER_JSON_CONVERSIONS(FrameInfo);
+VESPER_JSON_CONVERSIONS(FrameList);
+VESPER_JSON_CONVERSIONS(WorkerInfo);
+VESPER_JSON_CONVERSIONS(WorkerList);
+VESPER_JSON_CONVERSIONS(BlobStored);
 
 }  // namespace vesper::protocol

@@ -32,17 +32,14 @@ std::string expand(std::string_view path_template, std::initializer_list<std::st
 }
 
 std::string_view action_template(JobAction action) {
-  switch (action) {
-    case JobAction::Cancel:
-      return paths::kJobCancel;
-    case JobAction::Pause:
-      return paths::kJobPause;
-    case JobAction::Resume:
-      return paths::kJobResume;
-    case JobAction::RetryFailed:
-      return paths::kJobRetryFailed;
-  }
-  throw std::invalid_argument("action_template: unknown action");
+  constexpr std::string_view kTemplates[] = {paths::kJobCancel, paths::kJobPause, paths::kJobResume,
+                                             paths::kJobRetryFailed};
+  return kTemplates[size_t(action)];
+}
+
+std::string_view action_name(JobAction action) {
+  const std::string_view t = action_template(action);
+  return t.substr(t.rfind('/') + 1);
 }
 
 std::string job_path(int64_t job) { return expand(paths::kJob, {std::to_string(job)}); }

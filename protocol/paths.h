@@ -50,6 +50,7 @@ std::string expand(std::string_view path_template, std::initializer_list<std::st
 // What a job action does; each has its own path (kJobCancel...).
 enum class JobAction { Cancel, Pause, Resume, RetryFailed };
 std::string_view action_template(JobAction action);
+std::string_view action_name(JobAction action);  // "cancel", ..., "retry-failed"
 
 // Filled-in paths relative to kApiPrefix, for clients.
 std::string job_path(int64_t job);

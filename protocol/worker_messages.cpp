@@ -1,104 +1,47 @@
 #include "protocol/worker_messages.h"
 
-#include <nlohmann/json.hpp>
-
 #include "protocol/fields.h"
+#include "protocol/json_fields.h"
 
 namespace vesper::protocol {
 
-using nlohmann::json;
 namespace f = field;
+using detail::optional;
+using detail::required;
 
-void to_json(json& j, const RegisterRequest& m) { j = {{f::kName, m.name}}; }
-void from_json(const json& j, RegisterRequest& m) { j.at(f::kName).get_to(m.name); }
-
-void to_json(json& j, const RegisterResponse& m) { j = {{f::kWorkerId, m.worker_id}}; }
-void from_json(const json& j, RegisterResponse& m) { j.at(f::kWorkerId).get_to(m.worker_id); }
-
-void to_json(json& j, const AssetRef& m) { j = {{f::kName, m.name}, {f::kBlob, m.blob}}; }
-void from_json(const json& j, AssetRef& m) {
-  j.at(f::kName).get_to(m.name);
-  j.at(f::kBlob).get_to(m.blob);
-}
-
-void to_json(json& j, const LeaseRequest& m) {
-  j = {{f::kWorkerId, m.worker_id}};
-  if (!m.renderer.empty()) j[f::kRenderer] = m.renderer;
-}
-void from_json(const json& j, LeaseRequest& m) {
-  j.at(f::kWorkerId).get_to(m.worker_id);
-  m.renderer = j.value(f::kRenderer, "");
-}
-
-void to_json(json& j, const LeasedTask& m) {
-  j = {{f::kId, m.id},
-       {f::kJobId, m.job_id},
-       {f::kFrame, m.frame},
-       {f::kSampleBegin, m.sample_begin},
-       {f::kSampleEnd, m.sample_end},
-       {f::kAttempt, m.attempt}};
-}
-void from_json(const json& j, LeasedTask& m) {
-  j.at(f::kId).get_to(m.id);
-  j.at(f::kJobId).get_to(m.job_id);
-  j.at(f::kFrame).get_to(m.frame);
-  j.at(f::kSampleBegin).get_to(m.sample_begin);
-  j.at(f::kSampleEnd).get_to(m.sample_end);
-  j.at(f::kAttempt).get_to(m.attempt);
-}
-
-void to_json(json& j, const LeaseResponse& m) {
-  j = {{f::kLeaseId, m.lease_id}, {f::kExpiry, m.expiry}, {f::kLeaseSeconds, m.lease_seconds},
-       {f::kScene, m.scene},      {f::kSpp, m.spp},       {f::kAssets, m.assets},
-       {f::kTask, m.task}};
-}
-void from_json(const json& j, LeaseResponse& m) {
-  j.at(f::kLeaseId).get_to(m.lease_id);
-  j.at(f::kExpiry).get_to(m.expiry);
-  j.at(f::kLeaseSeconds).get_to(m.lease_seconds);
-  j.at(f::kScene).get_to(m.scene);
-  j.at(f::kSpp).get_to(m.spp);
-  m.assets = j.value(f::kAssets, std::vector<AssetRef>{});
-  j.at(f::kTask).get_to(m.task);
-}
-
-void to_json(json& j, const HeartbeatRequest& m) {
-  j = {{f::kLeaseId, m.lease_id}, {f::kProgress, m.progress}};
-}
-void from_json(const json& j, HeartbeatRequest& m) {
-  j.at(f::kLeaseId).get_to(m.lease_id);
-  m.progress = j.value(f::kProgress, 0.0);
-}
+VESPER_JSON_FIELDS(RegisterRequest, required(f::kName, &RegisterRequest::name))
+VESPER_JSON_FIELDS(RegisterResponse, required(f::kWorkerId, &RegisterResponse::worker_id))
+VESPER_JSON_FIELDS(AssetRef, required(f::kName, &AssetRef::name),
+                   required(f::kBlob, &AssetRef::blob))
+VESPER_JSON_FIELDS(LeaseRequest, required(f::kWorkerId, &LeaseRequest::worker_id),
+                   optional(f::kRenderer, &LeaseRequest::renderer))
+VESPER_JSON_FIELDS(LeasedTask, required(f::kId, &LeasedTask::id),
+                   required(f::kJobId, &LeasedTask::job_id),
+                   required(f::kFrame, &LeasedTask::frame),
+                   required(f::kSampleBegin, &LeasedTask::sample_begin),
+                   required(f::kSampleEnd, &LeasedTask::sample_end),
+                   required(f::kAttempt, &LeasedTask::attempt))
+VESPER_JSON_FIELDS(LeaseResponse, required(f::kLeaseId, &LeaseResponse::lease_id),
+                   required(f::kExpiry, &LeaseResponse::expiry),
+                   required(f::kLeaseSeconds, &LeaseResponse::lease_seconds),
+                   required(f::kScene, &LeaseResponse::scene),
+                   required(f::kSpp, &LeaseResponse::spp),
+                   required(f::kAssets, &LeaseResponse::assets),
+                   required(f::kTask, &LeaseResponse::task))
+VESPER_JSON_FIELDS(HeartbeatRequest, required(f::kLeaseId, &HeartbeatRequest::lease_id),
+                   required(f::kProgress, &HeartbeatRequest::progress))
+VESPER_JSON_FIELDS(HeartbeatResponse, required(f::kAnswer, &HeartbeatResponse::answer))
+VESPER_JSON_FIELDS(CompleteRequest, required(f::kLeaseId, &CompleteRequest::lease_id),
+                   required(f::kResult, &CompleteRequest::result))
+VESPER_JSON_FIELDS(FailRequest, required(f::kLeaseId, &FailRequest::lease_id),
+                   required(f::kLog, &FailRequest::log))
+VESPER_JSON_FIELDS(OkResponse, required(f::kOk, &OkResponse::ok))
 
 namespace {
-constexpr const char* kKeepRunning = "keep_running";
-constexpr const char* kStop = "stop";
+constexpr const char* kAnswers[] = {"keep_running", "stop"};  // by HeartbeatAnswer
 }  // namespace
 
-void to_json(json& j, const HeartbeatResponse& m) {
-  j = {{f::kAnswer, m.keep_running ? kKeepRunning : kStop}};
-}
-void from_json(const json& j, HeartbeatResponse& m) {
-  const std::string answer = j.at(f::kAnswer).get<std::string>();
-  if (answer != kKeepRunning && answer != kStop)
-    throw json::other_error::create(501, "unknown heartbeat answer '" + answer + "'", &j);
-  m.keep_running = answer == kKeepRunning;
-}
-
-void to_json(json& j, const CompleteRequest& m) {
-  j = {{f::kLeaseId, m.lease_id}, {f::kResult, m.result}};
-}
-void from_json(const json& j, CompleteRequest& m) {
-  j.at(f::kLeaseId).get_to(m.lease_id);
-  j.at(f::kResult).get_to(m.result);
-}
-
-void to_json(json& j, const FailRequest& m) { j = {{f::kLeaseId, m.lease_id}, {f::kLog, m.log}}; }
-void from_json(const json& j, FailRequest& m) {
-  j.at(f::kLeaseId).get_to(m.lease_id);
-  m.log = j.value(f::kLog, "");
-}
-
-void to_json(json& j, const OkResponse&) { j = {{f::kOk, true}}; }
+void to_json(nlohmann::json& j, const HeartbeatAnswer& m) { detail::write_enum(j, m, kAnswers); }
+void from_json(const nlohmann::json& j, HeartbeatAnswer& m) { detail::read_enum(j, m, kAnswers); }
 
 }  // namespace vesper::protocol

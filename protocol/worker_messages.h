@@ -5,9 +5,10 @@
 // from_json throws nlohmann::json::exception on a missing key or wrong type
 // (the server validates requests itself, with JSON paths in its errors).
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
+
+#include "protocol/json_conversions.h"
 
 namespace vesper::protocol {
 
@@ -60,10 +61,11 @@ struct HeartbeatRequest {
   std::string lease_id;
   double progress = 0;  // 0..1
 };
-// {"answer": "keep_running"} (the lease is extended) or {"answer": "stop"}
-// (the job was canceled or paused: drop the task).
+// "keep_running" (the lease is extended) or "stop" (the job was canceled or
+// paused: drop the task).
+enum class HeartbeatAnswer { KeepRunning, Stop };
 struct HeartbeatResponse {
-  bool keep_running = true;
+  HeartbeatAnswer answer = HeartbeatAnswer::KeepRunning;
 };
 
 // POST /complete: the result blob is uploaded first.
@@ -79,28 +81,21 @@ struct FailRequest {
 };
 
 // {"ok": true}: the answer to /complete and /fail.
-struct OkResponse {};
+struct OkResponse {
+  bool ok = true;
+};
 
-void to_json(nlohmann::json& j, const RegisterRequest& m);
-void from_json(const nlohmann::json& j, RegisterRequest& m);
-void to_json(nlohmann::json& j, const RegisterResponse& m);
-void from_json(const nlohmann::json& j, RegisterResponse& m);
-void to_json(nlohmann::json& j, const AssetRef& m);
-void from_json(const nlohmann::json& j, AssetRef& m);
-void to_json(nlohmann::json& j, const LeaseRequest& m);
-void from_json(const nlohmann::json& j, LeaseRequest& m);
-void to_json(nlohmann::json& j, const LeasedTask& m);
-void from_json(const nlohmann::json& j, LeasedTask& m);
-void to_json(nlohmann::json& j, const LeaseResponse& m);
-void from_json(const nlohmann::json& j, LeaseResponse& m);
-void to_json(nlohmann::json& j, const HeartbeatRequest& m);
-void from_json(const nlohmann::json& j, HeartbeatRequest& m);
-void to_json(nlohmann::json& j, const HeartbeatResponse& m);
-void from_json(const nlohmann::json& j, HeartbeatResponse& m);
-void to_json(nlohmann::json& j, const CompleteRequest& m);
-void from_json(const nlohmann::json& j, CompleteRequest& m);
-void to_json(nlohmann::json& j, const FailRequest& m);
-void from_json(const nlohmann::json& j, FailRequest& m);
-void to_json(nlohmann::json& j, const OkResponse& m);
+VESPER_JSON_CONVERSIONS(RegisterRequest);
+VESPER_JSON_CONVERSIONS(RegisterResponse);
+VESPER_JSON_CONVERSIONS(AssetRef);
+VESPER_JSON_CONVERSIONS(LeaseRequest);
+VESPER_JSON_CONVERSIONS(LeasedTask);
+VESPER_JSON_CONVERSIONS(LeaseResponse);
+VESPER_JSON_CONVERSIONS(HeartbeatRequest);
+VESPER_JSON_CONVERSIONS(HeartbeatAnswer);
+VESPER_JSON_CONVERSIONS(HeartbeatResponse);
+VESPER_JSON_CONVERSIONS(CompleteRequest);
+VESPER_JSON_CONVERSIONS(FailRequest);
+VESPER_JSON_CONVERSIONS(OkResponse);
 
 }  // namespace vesper::protocol

@@ -1,4 +1,4 @@
-#include "server/frame_handlers.h"
+#include "server/handlers.h"
 
 #include <nlohmann/json.hpp>
 
@@ -45,40 +45,40 @@ int status_of(FrameMerger::State s) {
   return 500;
 }
 
-}  // namespace
-
-void FrameHandlers::add_to(HandlerTable& table) {
-  table[protocol::Endpoint::ListFrames] = [this](const ApiRequest& r) { return list(r); };
-  table[protocol::Endpoint::GetFrame] = [this](const ApiRequest& r) { return get(r); };
-}
-
-ApiResponse FrameHandlers::list(const ApiRequest& req) {
+ApiResponse list(const FrameHandlerDeps& d, const ApiRequest& req) {
   const int64_t id = id_param(req, 0);
-  const std::vector<FrameStatus> frames = store_.with([&](JobStore& s) {
+  const std::vector<FrameStatus> frames = d.store.with([&](JobStore& s) {
     require_job(s, id);
     return s.frames(id);
   });
-  const std::map<int, std::string> failures = merger_.failures(id);
+  const std::map<int, std::string> failures = d.merger.failures(id);
   protocol::FrameList out;
   for (const FrameStatus& f : frames) out.frames.push_back(frame_info(f, failures));
   return json_response(200, out);
 }
 
-ApiResponse FrameHandlers::get(const ApiRequest& req) {
+ApiResponse get(const FrameHandlerDeps& d, const ApiRequest& req) {
   const int64_t id = id_param(req, 0);
   const int frame = frame_param(req, 1);
-  store_.with([&](JobStore& s) { require_job(s, id); });
-  const auto out = merger_.output(id, frame, /*retry=*/true);
+  d.store.with([&](JobStore& s) { require_job(s, id); });
+  const auto out = d.merger.output(id, frame, /*retry=*/true);
   if (!out) throw ApiError(404, "job " + std::to_string(id) + " has no frame " + req.params[1]);
   if (out->state != FrameMerger::State::Ready) throw ApiError(status_of(out->state), out->message);
-  const auto file = blobs_.file(out->blob);
-  const auto size = blobs_.size(out->blob);
+  const auto file = d.blobs.file(out->blob);
+  const auto size = d.blobs.size(out->blob);
   if (!file || !size)
     throw ApiError(500, "the output blob " + out->blob + " of " +
                             FrameMerger::frame_name(id, frame) + " is missing from the blob store");
   ApiResponse res = file_response(*file, *size, "image/x-exr");
   res.headers.emplace_back(std::string(protocol::kBlobHeader), out->blob);
   return res;
+}
+
+}  // namespace
+
+void add_frame_handlers(HandlerTable& table, const FrameHandlerDeps& d) {
+  table[protocol::Endpoint::ListFrames] = [d](const ApiRequest& r) { return list(d, r); };
+  table[protocol::Endpoint::GetFrame] = [d](const ApiRequest& r) { return get(d, r); };
 }
 
 }  // namespace vesper

@@ -1,24 +1,18 @@
-#include "server/ops_handlers.h"
+#include "server/handlers.h"
 
 #include "server/locked_store.h"
 #include "server/metrics.h"
 #include "server/worker_registry.h"
 
 namespace vesper {
+namespace {
 
-void OpsHandlers::add_to(HandlerTable& table) {
-  table[protocol::Endpoint::Healthz] = [](const ApiRequest&) {
-    return text_response("ok\n", "text/plain");
-  };
-  table[protocol::Endpoint::Metrics] = [this](const ApiRequest& r) { return metrics(r); };
-}
-
-ApiResponse OpsHandlers::metrics(const ApiRequest&) {
+ApiResponse metrics(const OpsHandlerDeps& d, const ApiRequest&) {
   MetricsSnapshot m;
   for (TaskState s : {TaskState::Queued, TaskState::Leased, TaskState::Done, TaskState::Failed,
                       TaskState::Canceled, TaskState::Paused})
     m.tasks_by_state[to_string(s)] = 0;
-  store_.with([&](JobStore& s) {
+  d.store.with([&](JobStore& s) {
     const auto jobs = s.jobs();
     m.jobs = int64_t(jobs.size());
     for (const auto& j : jobs) {
@@ -30,9 +24,18 @@ ApiResponse OpsHandlers::metrics(const ApiRequest&) {
       m.tasks_by_state[to_string(TaskState::Paused)] += j.paused;
     }
   });
-  m.workers = int64_t(workers_.list().size());
-  counters_.fill(m);
+  m.workers = int64_t(d.workers.list().size());
+  d.counters.fill(m);
   return text_response(prometheus_text(m), "text/plain; version=0.0.4; charset=utf-8");
+}
+
+}  // namespace
+
+void add_ops_handlers(HandlerTable& table, const OpsHandlerDeps& d) {
+  table[protocol::Endpoint::Healthz] = [](const ApiRequest&) {
+    return text_response("ok\n", "text/plain");
+  };
+  table[protocol::Endpoint::Metrics] = [d](const ApiRequest& r) { return metrics(d, r); };
 }
 
 }  // namespace vesper

@@ -8,19 +8,15 @@
 #include <mutex>
 
 #include "jobs/job_store.h"
-#include "server/blob_handlers.h"
 #include "server/blob_store.h"
-#include "server/frame_handlers.h"
 #include "server/frame_merger.h"
+#include "server/handlers.h"
 #include "server/http_api.h"
-#include "server/job_handlers.h"
 #include "server/lease_tracker.h"
 #include "server/locked_store.h"
 #include "server/metrics.h"
-#include "server/ops_handlers.h"
 #include "server/server_clock.h"
 #include "server/tokens.h"
-#include "server/worker_handlers.h"
 #include "server/worker_registry.h"
 
 namespace fs = std::filesystem;
@@ -51,11 +47,6 @@ struct Server::Impl {
   ServerCounters counters;
   LeaseTracker leases;
   FrameMerger merger;
-  JobHandlers job_handlers;
-  WorkerHandlers worker_handlers;
-  FrameHandlers frame_handlers;
-  BlobHandlers blob_handlers;
-  OpsHandlers ops_handlers;
   HttpApi http;  // last: stopped (and destroyed) before what its handlers use
   int bound_port = 0;
   bool started = false, stopped = false;
@@ -73,21 +64,16 @@ struct Server::Impl {
         leases(store, clock, workers, config.lease_seconds),
         merger(FrameMergerConfig{config.data_dir, config.vesper_binary, config.merge_retry_seconds},
                store, blobs, clock),
-        job_handlers(store, blobs, leases, clock),
-        worker_handlers({store, blobs, workers, leases, counters, clock, config.lease_seconds,
-                         [this] { merger.wake(); }}),
-        frame_handlers(store, blobs, merger),
-        blob_handlers(blobs),
-        ops_handlers(store, workers, counters),
         http(config, tokens, counters) {}
 
   HandlerTable handlers() {
     HandlerTable table;
-    job_handlers.add_to(table);
-    worker_handlers.add_to(table);
-    frame_handlers.add_to(table);
-    blob_handlers.add_to(table);
-    ops_handlers.add_to(table);
+    add_job_handlers(table, {store, blobs, leases, clock});
+    add_worker_handlers(table, {store, blobs, workers, leases, counters, clock,
+                                config.lease_seconds, [this] { merger.wake(); }});
+    add_frame_handlers(table, {store, blobs, merger});
+    add_blob_handlers(table, blobs);
+    add_ops_handlers(table, {store, workers, counters});
     return table;
   }
 };

@@ -24,6 +24,7 @@ TEST(PathsTest, TemplatesFillInForClients) {
   EXPECT_EQ(api(paths::kLease), "/api/v1/lease");
   EXPECT_EQ(job_path(7), "/jobs/7");
   EXPECT_EQ(job_action_path(7, JobAction::RetryFailed), "/jobs/7/retry-failed");
+  EXPECT_EQ(action_name(JobAction::Cancel), "cancel");
   EXPECT_EQ(task_log_path(7, 12), "/jobs/7/tasks/12/log");
   EXPECT_EQ(frames_path(7), "/jobs/7/frames");
   EXPECT_EQ(frame_path(7, -3), "/jobs/7/frames/-3");
@@ -61,9 +62,10 @@ TEST(WorkerMessagesTest, SmallMessagesKeepTheirKeys) {
   EXPECT_EQ(json(RegisterRequest{"host"}).dump(), R"({"name":"host"})");
   EXPECT_EQ(json(RegisterResponse{"w"}).dump(), R"({"worker_id":"w"})");
   EXPECT_EQ(json(HeartbeatRequest{"L", 0.5}).dump(), R"({"lease_id":"L","progress":0.5})");
-  EXPECT_EQ(json(HeartbeatResponse{true}).dump(), R"({"answer":"keep_running"})");
-  EXPECT_EQ(json(HeartbeatResponse{false}).dump(), R"({"answer":"stop"})");
-  EXPECT_FALSE(round_trip(HeartbeatResponse{false}).keep_running);
+  EXPECT_EQ(json(HeartbeatResponse{HeartbeatAnswer::KeepRunning}).dump(),
+            R"({"answer":"keep_running"})");
+  EXPECT_EQ(json(HeartbeatResponse{HeartbeatAnswer::Stop}).dump(), R"({"answer":"stop"})");
+  EXPECT_EQ(round_trip(HeartbeatResponse{HeartbeatAnswer::Stop}).answer, HeartbeatAnswer::Stop);
   EXPECT_THROW(json::parse(R"({"answer":"maybe"})").get<HeartbeatResponse>(), json::exception);
   EXPECT_EQ(json(CompleteRequest{"L", "R"}).dump(), R"({"lease_id":"L","result":"R"})");
   EXPECT_EQ(json(FailRequest{"L", "log"}).dump(), R"({"lease_id":"L","log":"log"})");
@@ -84,7 +86,9 @@ TEST(JobMessagesTest, SubmitRequestCarriesFramesAsStringOrList) {
   EXPECT_EQ(j.at("assets").size(), 1u);
   const SubmitRequest back = round_trip(s);
   EXPECT_EQ(std::get<std::vector<int>>(back.frames), (std::vector<int>{1, 5}));
-  EXPECT_EQ(json::parse(R"({"scene": "S", "frames": "2"})").get<SubmitRequest>().spp, 16);
+  EXPECT_THROW(json::parse(R"({"scene": "S", "frames": "2"})").get<SubmitRequest>(),
+               json::exception);
+  EXPECT_THROW(json::parse(R"([1])").get<SubmitRequest>(), json::exception);
 }
 
 TEST(JobMessagesTest, JobDetailIsTheSummaryWithTasks) {
