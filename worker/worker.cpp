@@ -287,15 +287,16 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
 // paused; 409: the lease is stale). A transport failure waits for the next beat.
 bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress) {
   const HttpResponse hb = api->heartbeat({l.lease_id, progress});
-  bool keep_running = true;
+  bool stop = false;
   if (hb.status == 200) {
     try {
-      keep_running = json::parse(hb.body).get<protocol::HeartbeatResponse>().keep_running;
+      stop = json::parse(hb.body).get<protocol::HeartbeatResponse>().answer ==
+             protocol::HeartbeatAnswer::Stop;
     } catch (const json::exception&) {
       // An answer this worker does not understand is not an order to stop.
     }
   }
-  if (hb.status == 409 || !keep_running) {
+  if (hb.status == 409 || stop) {
     spdlog::info("task {}: {}; killing the render", l.task.id,
                  hb.status == 409 ? "lease is stale" : "the server says stop");
     return false;
