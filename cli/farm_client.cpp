@@ -4,9 +4,9 @@
 #include <fstream>
 #include <iterator>
 
+#include "common/sha256.h"
 #include "protocol/error_body.h"
 #include "protocol/paths.h"
-#include "worker/file_hash.h"
 #include "worker/http_client.h"
 
 namespace vesper::cli {
@@ -87,7 +87,7 @@ std::string FarmClient::get_text(const std::string& path) {
 }
 
 std::string FarmClient::put_blob(const std::filesystem::path& file) {
-  const auto sha = worker_detail::sha256_file(file);
+  const auto sha = sha256_file(file);
   if (!sha) throw FarmClientError(file.string() + ": cannot read");
   // Content-addressed: a blob the server has is not sent again.
   const std::string blob = protocol::api(protocol::blob_path(*sha));

@@ -9,9 +9,9 @@
 #include "cli/commands.h"
 #include "cli/fetch.h"
 #include "cli/job_watch.h"
+#include "common/sha256.h"
 #include "protocol/job_messages.h"
 #include "protocol/paths.h"
-#include "worker/file_hash.h"
 
 namespace vesper::cli {
 namespace {
@@ -71,7 +71,7 @@ FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesys
     const std::filesystem::path file = dir / fmt::format("{}.{:04d}.exr", name, f.frame);
     client.download(protocol::frame_path(job, f.frame), file);
     if (!f.blob.empty()) {
-      const auto sha = worker_detail::sha256_file(file);
+      const auto sha = sha256_file(file);
       if (!sha || *sha != f.blob) {
         std::filesystem::remove(file);
         throw FarmClientError(file.string() + ": downloaded frame does not match its hash");

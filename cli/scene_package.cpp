@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "worker/file_hash.h"
+#include "common/sha256.h"
 
 namespace vesper::cli {
 namespace {
@@ -24,7 +24,7 @@ struct Packer {
       throw std::runtime_error(label + ": " + json_path + ": '" + ref +
                                "' is not a readable file (" + file.string() + ")");
     if (auto it = by_file.find(canonical); it != by_file.end()) return it->second.name;
-    const auto sha = worker_detail::sha256_file(canonical);
+    const auto sha = sha256_file(canonical);
     if (!sha) throw std::runtime_error(label + ": " + json_path + ": cannot read " + file.string());
     PackedAsset a{"assets/" + sha->substr(0, 12) + "-" + canonical.filename().string(), canonical,
                   *sha};

@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "renderer/scene/json_reader.h"
-#include "renderer/scene/scene_loader.h"
+#include "common/json_reader.h"
+#include "renderer/scene/json_values.h"
 
 namespace vesper {
 namespace fs = std::filesystem;
@@ -159,7 +159,7 @@ CompRecipe parse(const nlohmann::json& doc, const fs::path& base_dir, const std:
       }
       if (l.has("input")) cl.input = l.enumeration("input", input_names);
       cl.op.gain = float(l.number("gain", 1.0, Range::any()));
-      cl.op.tint = l.rgb("tint", Rgb(1.f), Range::any());
+      cl.op.tint = read_rgb(l, "tint", Rgb(1.f), Range::any());
       cl.op.exposure = float(l.number("exposure", 0.0, Range::closed(-64, 64)));
       cl.op.mode = l.enumeration("mode", 0, kModes) == 0 ? BlendMode::Add : BlendMode::Over;
       l.finish();
@@ -181,9 +181,9 @@ CompRecipe parse(const nlohmann::json& doc, const fs::path& base_dir, const std:
       cdl->expect_object();
       cdl->allow_keys({"slope", "offset", "power", "saturation"});
       Cdl c;
-      c.slope = cdl->rgb("slope", c.slope, Range::non_negative());
-      c.offset = cdl->rgb("offset", c.offset, Range::any());
-      c.power = cdl->rgb("power", c.power, Range::positive());
+      c.slope = read_rgb(*cdl, "slope", c.slope, Range::non_negative());
+      c.offset = read_rgb(*cdl, "offset", c.offset, Range::any());
+      c.power = read_rgb(*cdl, "power", c.power, Range::positive());
       c.saturation = float(cdl->number("saturation", 1.0, Range::non_negative()));
       recipe.grade.cdl = c;
     }
@@ -297,7 +297,7 @@ CompRecipe parse_recipe(const nlohmann::json& doc, const fs::path& base_dir,
                         const std::string& label) {
   try {
     return parse(doc, base_dir, label, {});
-  } catch (const SceneError& e) {
+  } catch (const JsonError& e) {
     throw CompError(e.what());
   }
 }
@@ -321,7 +321,7 @@ CompRecipe load_recipe(const fs::path& file) {
   const fs::path base = file.has_parent_path() ? file.parent_path() : fs::path(".");
   try {
     return parse(doc, base, file.string(), order);
-  } catch (const SceneError& e) {
+  } catch (const JsonError& e) {
     throw CompError(e.what());
   }
 }

@@ -7,8 +7,9 @@
 #include <cstring>
 #include <system_error>
 
+#include "common/secret_token.h"
+#include "common/sha256.h"
 #include "server/api_error.h"
-#include "server/sha256.h"
 
 namespace fs = std::filesystem;
 

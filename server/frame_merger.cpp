@@ -10,7 +10,8 @@
 #include "server/locked_store.h"
 #include "server/merge.h"
 #include "server/server_clock.h"
-#include "server/sha256.h"
+#include "common/secret_token.h"
+#include "common/sha256.h"
 
 namespace fs = std::filesystem;
 

@@ -15,7 +15,7 @@
 #include "server/api_error.h"
 #include "server/metrics.h"
 #include "server/server.h"
-#include "server/sha256.h"
+#include "common/secret_token.h"
 #include "server/tokens.h"
 
 namespace vesper {

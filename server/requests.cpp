@@ -9,7 +9,7 @@
 #include "protocol/fields.h"
 #include "server/api_error.h"
 #include "server/json_body.h"
-#include "server/sha256.h"
+#include "common/sha256.h"
 
 namespace vesper {
 

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "server/sha256.h"
+#include "common/secret_token.h"
 
 namespace fs = std::filesystem;
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "server/sha256.h"
+#include "common/secret_token.h"
 
 namespace fs = std::filesystem;
 

@@ -1,6 +1,6 @@
 #include "worker/blob_cache.h"
 
-#include "worker/file_hash.h"
+#include "common/sha256.h"
 
 namespace fs = std::filesystem;
 
@@ -9,7 +9,7 @@ namespace vesper::worker_detail {
 std::string BlobCache::fetch(const std::string& blob, const fs::path& file, const std::string& what,
                              const std::string& unique) {
   // Checked before the name becomes a path.
-  if (!is_blob_name(blob)) return "the lease names a malformed " + what + " hash '" + blob + "'";
+  if (!is_sha256_hex(blob)) return "the lease names a malformed " + what + " hash '" + blob + "'";
   if (sha256_file(file) == blob) return {};
   const fs::path part = dir_ / "tmp" / (blob + "." + unique + ".part");
   const HttpResponse g = api_.download_blob(blob, part);

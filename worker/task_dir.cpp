@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "worker/file_hash.h"
+#include "common/sha256.h"
 
 namespace fs = std::filesystem;
 
@@ -68,13 +68,13 @@ std::string task_dir_key(const std::string& scene, const std::vector<Asset>& ass
 
 fs::path materialise_task_dir(const fs::path& cache_dir, const std::string& scene,
                               const std::vector<Asset>& assets, const std::string& unique) {
-  if (!is_blob_name(scene)) throw std::runtime_error("malformed scene hash '" + scene + "'");
+  if (!is_sha256_hex(scene)) throw std::runtime_error("malformed scene hash '" + scene + "'");
   for (const Asset& a : assets) {
     if (const std::string why = asset_name_problem(a.name); !why.empty())
       throw std::runtime_error("asset name '" + a.name + "' " + why);
     if (a.name == "scene.json")
       throw std::runtime_error("asset name 'scene.json' clashes with the scene");
-    if (!is_blob_name(a.blob))
+    if (!is_sha256_hex(a.blob))
       throw std::runtime_error("malformed blob hash '" + a.blob + "' of asset '" + a.name + "'");
   }
   const fs::path dir = cache_dir / "jobs" / task_dir_key(scene, assets);

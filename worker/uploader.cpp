@@ -5,7 +5,7 @@
 #include <chrono>
 #include <thread>
 
-#include "worker/file_hash.h"
+#include "common/sha256.h"
 
 namespace vesper::worker_detail {
 namespace {

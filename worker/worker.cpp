@@ -12,7 +12,7 @@
 #include "protocol/worker_messages.h"
 #include "worker/backoff.h"
 #include "worker/blob_cache.h"
-#include "worker/file_hash.h"
+#include "common/sha256.h"
 #include "worker/render_command.h"
 #include "worker/server_api.h"
 #include "worker/task_dir.h"

@@ -35,9 +35,9 @@
 #include <utility>
 #include <vector>
 
+#include "common/sha256.h"
 #include "jobs/job_store.h"
 #include "server/server.h"
-#include "server/sha256.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

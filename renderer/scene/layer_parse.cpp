@@ -89,8 +89,8 @@ MediumOverride parse_override(JsonReader node) {
   // (after their overrides), as if it were a grid of density 1.
   if (const auto scale = node.optional_child("density_scale"))
     o.density_scale = scale->as_number(Range::non_negative());
-  if (const auto c = node.optional_child("sigma_a")) o.sigma_a = c->as_rgb(Range::non_negative());
-  if (const auto c = node.optional_child("sigma_s")) o.sigma_s = c->as_rgb(Range::non_negative());
+  if (const auto c = node.optional_child("sigma_a")) o.sigma_a = as_rgb(*c, Range::non_negative());
+  if (const auto c = node.optional_child("sigma_s")) o.sigma_s = as_rgb(*c, Range::non_negative());
   if (const auto c = node.optional_child("g")) o.g = c->as_number(Range::open(-1, 1));
   if (node.has("enabled")) o.enabled = node.boolean("enabled", true);
   return o;

@@ -10,7 +10,7 @@ constexpr std::string_view kLightTypes[] = {"quad", "point", "spot", "sun", "env
 // Normalizes a direction; rescaling first keeps huge or tiny (but non-zero)
 // inputs from overflowing or underflowing in the dot product.
 Vec3d unit_direction(JsonReader& node, std::string_view key) {
-  const Vec3d d = node.vec3(key);
+  const Vec3d d = read_vec3(node, key);
   const double m = max_abs_component(d);
   if (!(m > 0)) node.fail_key(key, "expected a non-zero direction, got [0, 0, 0]");
   return normalize(d / m);
@@ -18,9 +18,9 @@ Vec3d unit_direction(JsonReader& node, std::string_view key) {
 
 SpotLightDesc parse_spot(JsonReader& node) {
   SpotLightDesc spot;
-  spot.position = node.vec3("position");
+  spot.position = read_vec3(node, "position");
   spot.direction = unit_direction(node, "direction");
-  spot.intensity = node.rgb("intensity", Range::non_negative());
+  spot.intensity = read_rgb(node, "intensity", Range::non_negative());
   spot.cone_angle = node.number("cone_angle", Range::left_open(0, 180));
   spot.falloff_start = node.number("falloff_start", spot.cone_angle, Range::non_negative());
   if (spot.falloff_start > spot.cone_angle) {
@@ -42,7 +42,7 @@ EnvironmentLightDesc parse_environment(JsonReader& node, SceneParseContext& ctx)
     for (std::string_view key : {"scale", "rotation"}) {
       if (node.has(key)) node.fail_key(key, "'" + std::string(key) + "' only applies with 'file'");
     }
-    env.radiance = radiance->as_rgb(Range::non_negative());
+    env.radiance = as_rgb(*radiance, Range::non_negative());
     return env;
   }
   const std::filesystem::path path = ctx.resolve(file->as_string());
@@ -63,14 +63,15 @@ LightDesc parse_light(JsonReader node, SceneParseContext& ctx) {
     case 0: {
       node.allow_keys({"type", "corner", "edge1", "edge2", "radiance", "group"});
       // Zero-area quad lights are accepted: they emit nothing.
-      light.light = QuadLightDesc{node.vec3("corner"), node.vec3("edge1"), node.vec3("edge2"),
-                                  node.rgb("radiance", Range::non_negative())};
+      light.light = QuadLightDesc{read_vec3(node, "corner"), read_vec3(node, "edge1"),
+                                  read_vec3(node, "edge2"),
+                                  read_rgb(node, "radiance", Range::non_negative())};
       break;
     }
     case 1: {
       node.allow_keys({"type", "position", "intensity", "group"});
-      light.light =
-          PointLightDesc{node.vec3("position"), node.rgb("intensity", Range::non_negative())};
+      light.light = PointLightDesc{read_vec3(node, "position"),
+                                   read_rgb(node, "intensity", Range::non_negative())};
       break;
     }
     case 2: {
@@ -83,7 +84,7 @@ LightDesc parse_light(JsonReader node, SceneParseContext& ctx) {
       node.allow_keys({"type", "direction", "irradiance", "angle", "group"});
       SunLightDesc sun;
       sun.direction = unit_direction(node, "direction");
-      sun.irradiance = node.rgb("irradiance", Range::non_negative());
+      sun.irradiance = read_rgb(node, "irradiance", Range::non_negative());
       sun.angle = node.number("angle", 0.53, Range::right_open(0, 90));
       light.light = sun;
       break;

@@ -18,7 +18,7 @@ const Range kAsymmetry = Range::open(-1, 1);
 BoxDesc parse_box(JsonReader node) {
   node.expect_object();
   node.allow_keys({"min", "max"});
-  BoxDesc box{node.vec3("min"), node.vec3("max")};
+  BoxDesc box{read_vec3(node, "min"), read_vec3(node, "max")};
   for (int i = 0; i < 3; ++i) {
     if (!(box.min[i] < box.max[i])) {
       static constexpr const char* kAxis[] = {"x", "y", "z"};
@@ -33,8 +33,8 @@ BoxDesc parse_box(JsonReader node) {
 HomogeneousMediumDesc parse_homogeneous(JsonReader& node) {
   node.allow_keys({"type", "sigma_a", "sigma_s", "g", "bounds"});
   HomogeneousMediumDesc m;
-  m.sigma_a = node.rgb("sigma_a", Rgb(0.f), Range::non_negative());
-  m.sigma_s = node.rgb("sigma_s", Range::non_negative());
+  m.sigma_a = read_rgb(node, "sigma_a", Rgb(0.f), Range::non_negative());
+  m.sigma_s = read_rgb(node, "sigma_s", Range::non_negative());
   m.g = node.number("g", 0.0, kAsymmetry);
   if (const auto bounds = node.optional_child("bounds")) m.bounds = parse_box(*bounds);
   return m;
@@ -70,8 +70,8 @@ VdbMediumDesc parse_vdb(JsonReader& node, SceneParseContext& ctx) {
   m.file = path.string();
   if (const auto grid = node.optional_child("grid")) m.grid = grid->as_string();
   m.density_scale = node.number("density_scale", m.density_scale, Range::non_negative());
-  m.sigma_a = node.rgb("sigma_a", m.sigma_a, Range::non_negative());
-  m.sigma_s = node.rgb("sigma_s", m.sigma_s, Range::non_negative());
+  m.sigma_a = read_rgb(node, "sigma_a", m.sigma_a, Range::non_negative());
+  m.sigma_s = read_rgb(node, "sigma_s", m.sigma_s, Range::non_negative());
   m.g = node.number("g", m.g, kAsymmetry);
   if (const auto transform = node.optional_child("transform")) {
     m.transform = parse_transform(*transform);
@@ -80,7 +80,7 @@ VdbMediumDesc parse_vdb(JsonReader& node, SceneParseContext& ctx) {
     m.emission_grid = emission_grid->as_string();
   }
   m.emission_scale = node.number("emission_scale", m.emission_scale, Range::non_negative());
-  m.emission_color = node.rgb("emission_color", m.emission_color, Range::non_negative());
+  m.emission_color = read_rgb(node, "emission_color", m.emission_color, Range::non_negative());
   if (m.emission_scale > 0 && m.emission_grid.empty()) {
     node.fail_key("emission_scale",
                   "emission_scale > 0 needs 'emission_grid' (the grid whose values emit), got "

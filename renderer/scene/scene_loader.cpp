@@ -4,13 +4,10 @@
 
 #include <climits>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
-#include "renderer/scene/json_reader.h"
+#include "common/json_parse.h"
 #include "renderer/scene/scene_parse.h"
 
 namespace vesper {
@@ -42,20 +39,14 @@ struct Fnv1a64 {
   }
 };
 
-std::string read_file(const std::filesystem::path& path, bool& ok) {
-  std::ifstream in(path, std::ios::binary);
-  ok = bool(in);
-  return ok ? std::string(std::istreambuf_iterator<char>(in), {}) : std::string();
-}
-
 CameraDesc parse_camera(JsonReader node) {
   node.expect_object();
   node.enumeration("type", kCameraTypes);
   node.allow_keys({"type", "from", "to", "up", "fov", "aperture", "focus_distance"});
   CameraDesc cam;
-  cam.from = node.vec3("from");
-  cam.to = node.vec3("to");
-  cam.up = node.vec3("up");
+  cam.from = read_vec3(node, "from");
+  cam.to = read_vec3(node, "to");
+  cam.up = read_vec3(node, "up");
   cam.fov_degrees = node.number("fov", Range::open(0, 180));
   cam.aperture = node.number("aperture", 0.0, Range::non_negative());
   const Vec3d forward = cam.to - cam.from;
@@ -113,15 +104,15 @@ MaterialDesc parse_material(JsonReader node) {
     case 0: {
       node.allow_keys({"type", "albedo"});
       DiffuseMaterialDesc m;
-      m.albedo = node.rgb("albedo", m.albedo, unit);
+      m.albedo = read_rgb(node, "albedo", m.albedo, unit);
       return m;
     }
     case 1: {
       node.allow_keys({"type", "roughness", "eta", "k"});
       ConductorMaterialDesc m;
       m.roughness = node.number("roughness", m.roughness, unit);
-      m.eta = node.rgb("eta", m.eta, Range::positive());
-      m.k = node.rgb("k", m.k, Range::non_negative());
+      m.eta = read_rgb(node, "eta", m.eta, Range::positive());
+      m.k = read_rgb(node, "k", m.k, Range::non_negative());
       return m;
     }
     case 2: {
@@ -134,7 +125,7 @@ MaterialDesc parse_material(JsonReader node) {
     default: {
       node.allow_keys({"type", "base_color", "metallic", "roughness"});
       PrincipledMaterialDesc m;
-      m.base_color = node.rgb("base_color", m.base_color, unit);
+      m.base_color = read_rgb(node, "base_color", m.base_color, unit);
       m.metallic = node.number("metallic", m.metallic, unit);
       m.roughness = node.number("roughness", m.roughness, unit);
       return m;
@@ -142,88 +133,116 @@ MaterialDesc parse_material(JsonReader node) {
   }
 }
 
-// nlohmann keeps the last of duplicate keys silently; a duplicated key in a
-// scene is almost always a mistake, so the parse callback reports it.
-class DuplicateKeyCheck {
- public:
-  explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
-  bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-    using E = nlohmann::json::parse_event_t;
-    switch (event) {
-      case E::object_start:
-        stack_.push_back({false, 0, {}, {}});
-        break;
-      case E::array_start:
-        stack_.push_back({true, 0, {}, {}});
-        break;
-      case E::key: {
-        Frame& top = stack_.back();
-        top.key = parsed.get<std::string>();
-        if (!top.keys.insert(top.key).second) {
-          throw SceneError(file_, path(), "duplicate key '" + top.key + "'");
-        }
-        break;
-      }
-      case E::object_end:
-      case E::array_end:
-        stack_.pop_back();
-        [[fallthrough]];
-      case E::value:
-        if (!stack_.empty() && stack_.back().is_array) ++stack_.back().index;
-        break;
-    }
-    return true;
+// name -> material, in name order (nlohmann's objects are sorted by key).
+void parse_materials(JsonReader materials, SceneDescription& scene) {
+  for (const auto& [name, value] : materials.json().items()) {
+    JsonReader m(value, materials.file(), materials.key_path(name));
+    if (name.empty()) m.fail("expected a non-empty material name");
+    scene.materials.push_back(parse_material(m));
+    scene.material_names.push_back(name);
   }
-
- private:
-  struct Frame {
-    bool is_array;
-    size_t index;
-    std::string key;
-    std::set<std::string> keys;
-  };
-  std::string path() const {
-    std::string p;
-    for (const Frame& f : stack_) {
-      p = f.is_array ? json_pointer_append(p, f.index) : json_pointer_append(p, f.key);
-    }
-    return p;
-  }
-  std::string file_;
-  std::vector<Frame> stack_;
-};
-
-// nlohmann reports a byte offset; people need line and column.
-std::string at_line_column(const std::string& text, size_t offset) {
-  const size_t end = std::min(offset, text.size());
-  size_t line = 1, line_start = 0;
-  for (size_t i = 0; i < end; ++i) {
-    if (text[i] == '\n') ++line, line_start = i + 1;
-  }
-  return "line " + std::to_string(line) + ", column " + std::to_string(end - line_start + 1);
 }
 
-// nlohmann's what() minus its "[json.exception.x.N] ... column C: " prefix.
-std::string nlohmann_detail(const nlohmann::json::exception& e) {
-  std::string detail = e.what();
-  if (const size_t bracket = detail.find("] "); bracket != std::string::npos) {
-    detail = detail.substr(bracket + 2);
+// Layers name these two groups with their own meaning.
+void check_light_group(JsonReader light, const std::string& group) {
+  if (group == kDefaultLightGroup) {
+    light.fail_key("group",
+                   "expected a group name other than \"default\" (the group of the lights "
+                   "without a 'group': leave the key out), got \"default\"");
   }
-  if (detail.rfind("parse error", 0) == 0) {
-    if (const size_t colon = detail.find(": "); colon != std::string::npos) {
-      detail = detail.substr(colon + 2);
+  if (group == kEmissionLightGroup) {
+    light.fail_key("group",
+                   "expected a group name other than \"emission\" (reserved for emission from "
+                   "media), got \"emission\"");
+  }
+}
+
+void parse_lights(const JsonReader& lights, SceneParseContext& ctx, SceneDescription& scene) {
+  lights.expect_array();
+  std::optional<size_t> environment;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    // Checked before parsing so a second environment image is not even loaded.
+    const nlohmann::json& l = lights.json()[i];
+    if (l.is_object() && l.contains("type") && l["type"] == "environment") {
+      if (environment) {
+        lights.element(i).fail("at most one environment light is allowed (another is at " +
+                               json_pointer_append(lights.path(), *environment) + ")");
+      }
+      environment = i;
+    }
+    scene.lights.push_back(parse_light(lights.element(i), ctx));
+    check_light_group(lights.element(i), scene.lights.back().group);
+  }
+}
+
+// Canonical text (sorted keys, no whitespace) so that reformatting a scene
+// does not change its hash, then the bytes of every referenced file.
+std::string content_hash(const nlohmann::json& doc, const SceneParseContext& ctx) {
+  Fnv1a64 hash;
+  hash.add_sized(doc.dump());
+  for (const std::filesystem::path& p : ctx.referenced_files) {
+    hash.add_sized(read_text_file(p, "a file the scene references"));
+  }
+  return hash.hex();
+}
+
+SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem::path& file) {
+  SceneParseContext ctx;
+  ctx.file = file.string();
+  ctx.base_dir = file.parent_path();
+  JsonReader root(doc, ctx.file, "");
+  root.expect_object();
+
+  // The version decides what the rest means, so it is checked before anything else.
+  root.child("format").expect_string(kFormat);
+  root.allow_keys(
+      {"format", "camera", "film", "render", "materials", "shapes", "lights", "media", "layers"});
+
+  SceneDescription scene;
+  scene.file = file;
+  scene.camera = parse_camera(root.object("camera"));
+  scene.film = parse_film(root.object("film"));
+  scene.render = parse_render(root.object("render"));
+  parse_materials(root.object("materials"), scene);
+  ctx.material_names = scene.material_names;
+
+  const JsonReader shapes = root.array("shapes");
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    scene.shapes.push_back(parse_shape(shapes.element(i), ctx));
+  }
+  if (const auto lights = root.optional_child("lights")) parse_lights(*lights, ctx, scene);
+
+  // Media come in name order, like materials; the order does not matter since
+  // overlapping media add.
+  if (const auto media = root.optional_child("media")) {
+    media->expect_object();
+    for (const auto& [name, value] : media->json().items()) {
+      scene.media.push_back(
+          parse_medium(JsonReader(value, ctx.file, media->key_path(name)), name, ctx));
     }
   }
-  return detail;
+  // After lights and media: layers name light groups and media.
+  if (const auto layers = root.optional_child("layers")) {
+    scene.layers = parse_layers(*layers, scene.lights, scene.media);
+  }
+  scene.content_hash = content_hash(doc, ctx);
+  return scene;
+}
+
+// The reader and the JSON parser throw JsonError; callers of the scene loader
+// catch SceneError (a scene's mesh and image loaders throw it directly).
+template <typename Parse>
+SceneDescription as_scene_error(Parse parse) {
+  try {
+    return parse();
+  } catch (const SceneError&) {
+    throw;
+  } catch (const JsonError& e) {
+    throw SceneError(e.file(), e.json_path(), e.message());
+  }
 }
 
 }  // namespace
-
-SceneError::SceneError(std::string file, std::string json_path, std::string message)
-    : std::runtime_error(file + ": " + (json_path.empty() ? "" : json_path + ": ") + message),
-      file_(std::move(file)),
-      json_path_(std::move(json_path)),
-      message_(std::move(message)) {}
 
 std::filesystem::path SceneParseContext::resolve(const std::string& relative) const {
   const std::filesystem::path p(relative);
@@ -242,122 +261,12 @@ uint32_t SceneParseContext::material(JsonReader& node, std::string_view key) con
 }
 
 SceneDescription load_scene(const std::filesystem::path& file) {
-  bool ok = false;
-  const std::string text = read_file(file, ok);
-  if (!ok) throw SceneError(file.string(), "", "cannot open the scene file");
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text, DuplicateKeyCheck(file.string()));
-  } catch (const nlohmann::json::parse_error& e) {
-    throw SceneError(file.string(), "",
-                     "invalid JSON at " + at_line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": " +
-                         nlohmann_detail(e));
-  } catch (const nlohmann::json::out_of_range& e) {
-    // A number beyond the double range (1e999) carries no position; find its text.
-    std::string where = "invalid JSON";
-    const std::string what = e.what();
-    const size_t q = what.find('\'');
-    if (q != std::string::npos && what.back() == '\'') {
-      const size_t at = text.find(what.substr(q + 1, what.size() - q - 2));
-      if (at != std::string::npos) where += " at " + at_line_column(text, at);
-    }
-    throw SceneError(file.string(), "",
-                     where + ": " + nlohmann_detail(e) + " (numbers must be finite doubles)");
-  }
-  return parse_scene(doc, file);
+  return as_scene_error(
+      [&] { return parse_document(read_json_file(file, "the scene file"), file); });
 }
 
 SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) {
-  SceneParseContext ctx;
-  ctx.file = file.string();
-  ctx.base_dir = file.parent_path();
-  JsonReader root(doc, ctx.file, "");
-  root.expect_object();
-
-  // The version decides what the rest means, so it is checked before anything else.
-  const JsonReader format = root.child("format");
-  if (!format.json().is_string() || format.json().get<std::string>() != kFormat) {
-    format.fail("expected \"" + std::string(kFormat) + "\", got " + describe_json(format.json()));
-  }
-  root.allow_keys(
-      {"format", "camera", "film", "render", "materials", "shapes", "lights", "media", "layers"});
-
-  SceneDescription scene;
-  scene.file = file;
-  scene.camera = parse_camera(root.object("camera"));
-  scene.film = parse_film(root.object("film"));
-  scene.render = parse_render(root.object("render"));
-
-  const JsonReader materials = root.object("materials");
-  for (const auto& [name, value] : materials.json().items()) {
-    JsonReader m(value, ctx.file, materials.key_path(name));
-    if (name.empty()) m.fail("expected a non-empty material name");
-    scene.materials.push_back(parse_material(m));
-    scene.material_names.push_back(name);
-  }
-  ctx.material_names = scene.material_names;
-
-  const JsonReader shapes = root.array("shapes");
-  for (size_t i = 0; i < shapes.size(); ++i) {
-    scene.shapes.push_back(parse_shape(shapes.element(i), ctx));
-  }
-
-  if (const auto lights = root.optional_child("lights")) {
-    lights->expect_array();
-    std::optional<size_t> environment;
-    for (size_t i = 0; i < lights->size(); ++i) {
-      // Checked before parsing so a second environment image is not even loaded.
-      const nlohmann::json& l = lights->json()[i];
-      if (l.is_object() && l.contains("type") && l["type"] == "environment") {
-        if (environment) {
-          lights->element(i).fail("at most one environment light is allowed (another is at " +
-                                  json_pointer_append(lights->path(), *environment) + ")");
-        }
-        environment = i;
-      }
-      scene.lights.push_back(parse_light(lights->element(i), ctx));
-      // Layers name these two groups with their own meaning.
-      const std::string& group = scene.lights.back().group;
-      if (group == kDefaultLightGroup) {
-        lights->element(i).fail_key(
-            "group",
-            "expected a group name other than \"default\" (the group of the lights "
-            "without a 'group': leave the key out), got \"default\"");
-      }
-      if (group == kEmissionLightGroup) {
-        lights->element(i).fail_key(
-            "group",
-            "expected a group name other than \"emission\" (reserved for emission from "
-            "media), got \"emission\"");
-      }
-    }
-  }
-
-  // nlohmann's objects are sorted by key, so media come in name order (like
-  // materials); the order does not matter since overlapping media add.
-  if (const auto media = root.optional_child("media")) {
-    media->expect_object();
-    for (const auto& [name, value] : media->json().items()) {
-      scene.media.push_back(
-          parse_medium(JsonReader(value, ctx.file, media->key_path(name)), name, ctx));
-    }
-  }
-
-  // After lights and media: layers name light groups and media.
-  if (const auto layers = root.optional_child("layers")) {
-    scene.layers = parse_layers(*layers, scene.lights, scene.media);
-  }
-
-  // Canonical text (sorted keys, no whitespace) so that reformatting a scene
-  // does not change its hash, then the bytes of every referenced file.
-  Fnv1a64 hash;
-  hash.add_sized(doc.dump());
-  for (const std::filesystem::path& p : ctx.referenced_files) {
-    bool read_ok = false;  // the loaders have just read these files successfully
-    hash.add_sized(read_file(p, read_ok));
-  }
-  scene.content_hash = hash.hex();
-  return scene;
+  return as_scene_error([&] { return parse_document(doc, file); });
 }
 
 }  // namespace vesper

@@ -1,26 +1,22 @@
 #pragma once
 // Reads and validates a `vesper-scene/1` file (format: docs/scene-format.md).
 #include <filesystem>
-#include <stdexcept>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "common/json_error.h"
 #include "renderer/scene/scene_description.h"
 
 namespace vesper {
 
-// A rejected scene. what() reads "<file>: <json path>: <message>", e.g.
+// A rejected scene: a JsonError about a scene file (its own type so callers
+// can tell a bad scene from other failures). what() reads
+// "<file>: <json path>: <message>", e.g.
 // "scenes/x.json: /shapes/3/radius: expected a positive number, got -1".
-class SceneError : public std::runtime_error {
+class SceneError : public JsonError {
  public:
-  SceneError(std::string file, std::string json_path, std::string message);
-  const std::string& file() const { return file_; }
-  const std::string& json_path() const { return json_path_; }
-  const std::string& message() const { return message_; }
-
- private:
-  std::string file_, json_path_, message_;
+  using JsonError::JsonError;
 };
 
 // Loads the scene, all meshes and environment images it references. Throws

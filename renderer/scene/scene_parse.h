@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "renderer/scene/aov_names.h"
-#include "renderer/scene/json_reader.h"
+#include "renderer/scene/json_values.h"
 #include "renderer/scene/scene_description.h"
 
 namespace vesper {

@@ -86,14 +86,15 @@ ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx) {
       node.allow_keys({"type", "corner", "edge1", "edge2", "material"});
       shape.material = ctx.material(node, "material");
       // Zero-area quads are accepted: they are simply invisible.
-      shape.geometry = QuadShapeDesc{node.vec3("corner"), node.vec3("edge1"), node.vec3("edge2")};
+      shape.geometry = QuadShapeDesc{read_vec3(node, "corner"), read_vec3(node, "edge1"),
+                                     read_vec3(node, "edge2")};
       break;
     }
     case 1: {
       node.allow_keys({"type", "center", "radius", "material"});
       shape.material = ctx.material(node, "material");
       shape.geometry =
-          SphereShapeDesc{node.vec3("center"), node.number("radius", Range::positive())};
+          SphereShapeDesc{read_vec3(node, "center"), node.number("radius", Range::positive())};
       break;
     }
     default: {

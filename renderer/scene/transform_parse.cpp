@@ -109,7 +109,7 @@ Transform parse_transform(JsonReader node) {
     if (scale->json().is_number()) {
       s = Vec3d(scale->as_number());
     } else if (scale->json().is_array()) {
-      s = scale->as_vec3();
+      s = as_vec3(*scale);
     } else {
       scale->fail("expected a number or an array of 3 numbers, got " +
                   describe_json(scale->json()));
@@ -120,13 +120,13 @@ Transform parse_transform(JsonReader node) {
   if (rotate) {
     JsonReader r = *rotate;
     r.expect_object();
-    const Vec3d axis = r.vec3("axis");
+    const Vec3d axis = read_vec3(r, "axis");
     const double angle = r.number("angle");
     r.finish();
     if (!(length(axis) > 0)) r.fail_key("axis", "expected a non-zero rotation axis");
     t = compose(rotation(normalize(axis), angle), t);
   }
-  if (translate) t = compose(translation(translate->as_vec3()), t);
+  if (translate) t = compose(translation(as_vec3(*translate)), t);
   return t;
 }
 

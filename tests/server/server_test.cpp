@@ -18,8 +18,8 @@
 #include <sstream>
 #include <thread>
 
+#include "common/sha256.h"
 #include "server/server.h"
-#include "server/sha256.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

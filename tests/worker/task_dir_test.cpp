@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "worker/file_hash.h"
+#include "common/sha256.h"
 
 namespace fs = std::filesystem;
 

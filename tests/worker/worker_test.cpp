@@ -19,8 +19,8 @@
 #include <sstream>
 #include <thread>
 
+#include "common/sha256.h"
 #include "server/server.h"
-#include "server/sha256.h"
 #include "worker/worker.h"
 
 namespace fs = std::filesystem;

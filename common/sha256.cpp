@@ -1,14 +1,13 @@
-#include "server/sha256.h"
+#include "common/sha256.h"
 
-#include <openssl/crypto.h>
 #include <openssl/evp.h>
-#include <openssl/rand.h>
 
+#include <cstdio>
+#include <memory>
 #include <stdexcept>
-#include <vector>
 
 namespace vesper {
-namespace {
+
 std::string to_hex(const unsigned char* p, size_t n) {
   static const char* digits = "0123456789abcdef";
   std::string out(n * 2, '0');
@@ -18,11 +17,12 @@ std::string to_hex(const unsigned char* p, size_t n) {
   }
   return out;
 }
-}  // namespace
 
 Sha256::Sha256() : ctx_(EVP_MD_CTX_new()) {
-  if (!ctx_ || EVP_DigestInit_ex(static_cast<EVP_MD_CTX*>(ctx_), EVP_sha256(), nullptr) != 1)
+  if (!ctx_ || EVP_DigestInit_ex(static_cast<EVP_MD_CTX*>(ctx_), EVP_sha256(), nullptr) != 1) {
+    EVP_MD_CTX_free(static_cast<EVP_MD_CTX*>(ctx_));
     throw std::runtime_error("OpenSSL: cannot initialise SHA-256");
+  }
 }
 Sha256::~Sha256() { EVP_MD_CTX_free(static_cast<EVP_MD_CTX*>(ctx_)); }
 
@@ -45,22 +45,22 @@ std::string sha256_hex(std::string_view data) {
   return h.hex();
 }
 
+std::optional<std::string> sha256_file(const std::filesystem::path& file) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), std::fclose);
+  if (!f) return std::nullopt;
+  Sha256 h;
+  char buf[1 << 16];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) h.update(std::string_view(buf, n));
+  if (std::ferror(f.get())) return std::nullopt;
+  return h.hex();
+}
+
 bool is_sha256_hex(std::string_view s) {
   if (s.size() != 64) return false;
   for (char c : s)
     if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
   return true;
-}
-
-std::string random_hex(int bytes) {
-  std::vector<unsigned char> buf(static_cast<size_t>(bytes));
-  if (RAND_bytes(buf.data(), bytes) != 1) throw std::runtime_error("OpenSSL: RAND_bytes failed");
-  return to_hex(buf.data(), buf.size());
-}
-
-bool constant_time_equal(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  return CRYPTO_memcmp(a.data(), b.data(), a.size()) == 0;
 }
 
 }  // namespace vesper

@@ -1,8 +1,10 @@
 #pragma once
-// JsonReader: one node of a scene document together with its JSON pointer and
-// the scene file name, so every validation error can name both. Object getters
-// record each key they are asked about; finish() then rejects any other key,
-// which is how typos ("radus") are caught instead of silently ignored.
+// JsonReader: one node of a JSON document together with its JSON pointer and
+// the document's name (its file), so every validation error can name both:
+// it throws JsonError "<file>: <json path>: expected ..., got ...". Object
+// getters record each key they are asked about; finish() then rejects any
+// other key, which is how typos ("radus") are caught instead of silently
+// ignored. Used for scenes, composite recipes, job files and partial headers.
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
@@ -14,8 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "renderer/math/rgb.h"
-#include "renderer/math/vec.h"
+#include "common/json_error.h"
 
 namespace vesper {
 
@@ -53,6 +54,7 @@ class JsonReader {
   const std::string& file() const { return file_; }
   std::string key_path(std::string_view key) const { return json_pointer_append(path_, key); }
 
+  // Throw JsonError at this node / at its `key`.
   [[noreturn]] void fail(const std::string& message) const;
   [[noreturn]] void fail_key(std::string_view key, const std::string& message) const;
 
@@ -62,9 +64,9 @@ class JsonReader {
   double as_number(const Range& range = Range::any()) const;
   int64_t as_integer(int64_t lo, int64_t hi) const;
   uint64_t as_uint64() const;
-  Vec3d as_vec3() const;
-  Rgb as_rgb(const Range& component_range) const;
   std::string as_string(bool allow_empty = false) const;
+  // This node must be the string `expected` (a format tag such as "vesper-scene/1").
+  void expect_string(std::string_view expected) const;
   // Index into `options`; the message lists them all.
   size_t as_enum(std::span<const std::string_view> options) const;
 
@@ -85,9 +87,6 @@ class JsonReader {
   double number(std::string_view key, double fallback, const Range& range = Range::any());
   int64_t integer(std::string_view key, int64_t lo, int64_t hi);
   int64_t integer(std::string_view key, int64_t fallback, int64_t lo, int64_t hi);
-  Vec3d vec3(std::string_view key);
-  Rgb rgb(std::string_view key, const Range& component_range);
-  Rgb rgb(std::string_view key, Rgb fallback, const Range& component_range);
   std::string string(std::string_view key);
   size_t enumeration(std::string_view key, std::span<const std::string_view> options);
   size_t enumeration(std::string_view key, size_t fallback,

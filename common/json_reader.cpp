@@ -1,10 +1,8 @@
-#include "renderer/scene/json_reader.h"
+#include "common/json_reader.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-
-#include "renderer/scene/scene_loader.h"
 
 namespace vesper {
 namespace {
@@ -111,11 +109,11 @@ JsonReader::JsonReader(const nlohmann::json& node, std::string file, std::string
     : node_(&node), file_(std::move(file)), path_(std::move(path)) {}
 
 void JsonReader::fail(const std::string& message) const {
-  throw SceneError(file_, path_.empty() ? "/" : path_, message);
+  throw JsonError(file_, path_.empty() ? "/" : path_, message);
 }
 
 void JsonReader::fail_key(std::string_view key, const std::string& message) const {
-  throw SceneError(file_, key_path(key), message);
+  throw JsonError(file_, key_path(key), message);
 }
 
 void JsonReader::expect_object() const {
@@ -163,37 +161,17 @@ uint64_t JsonReader::as_uint64() const {
   return uint64_t(as_integer(0, std::numeric_limits<int64_t>::max()));
 }
 
-Vec3d JsonReader::as_vec3() const {
-  if (!node_->is_array() || node_->size() != 3) {
-    fail("expected an array of 3 numbers, got " + describe_json(*node_));
-  }
-  Vec3d v;
-  for (int i = 0; i < 3; ++i) v[i] = element(size_t(i)).as_number();
-  return v;
-}
-
-Rgb JsonReader::as_rgb(const Range& range) const {
-  if (!node_->is_array() || node_->size() != 3) {
-    fail("expected an RGB array of 3 numbers, got " + describe_json(*node_));
-  }
-  Rgb c;
-  for (int i = 0; i < 3; ++i) {
-    const JsonReader e = element(size_t(i));
-    const double v = e.as_number(range);
-    // The renderer stores colours as float: a double beyond FLT_MAX would become inf.
-    if (std::abs(v) > double(std::numeric_limits<float>::max())) {
-      e.fail("expected a number representable as a float, got " + describe_json(e.json()));
-    }
-    c[i] = float(v);
-  }
-  return c;
-}
-
 std::string JsonReader::as_string(bool allow_empty) const {
   if (!node_->is_string()) fail("expected a string, got " + describe_json(*node_));
   std::string s = node_->get<std::string>();
   if (s.empty() && !allow_empty) fail("expected a non-empty string, got \"\"");
   return s;
+}
+
+void JsonReader::expect_string(std::string_view expected) const {
+  if (!node_->is_string() || node_->get<std::string>() != expected) {
+    fail("expected \"" + std::string(expected) + "\", got " + describe_json(*node_));
+  }
 }
 
 size_t JsonReader::as_enum(std::span<const std::string_view> options) const {
@@ -283,17 +261,6 @@ int64_t JsonReader::integer(std::string_view key, int64_t lo, int64_t hi) {
 int64_t JsonReader::integer(std::string_view key, int64_t fallback, int64_t lo, int64_t hi) {
   const auto c = optional_child(key);
   return c ? c->as_integer(lo, hi) : fallback;
-}
-
-Vec3d JsonReader::vec3(std::string_view key) { return child(key).as_vec3(); }
-
-Rgb JsonReader::rgb(std::string_view key, const Range& component_range) {
-  return child(key).as_rgb(component_range);
-}
-
-Rgb JsonReader::rgb(std::string_view key, Rgb fallback, const Range& component_range) {
-  const auto c = optional_child(key);
-  return c ? c->as_rgb(component_range) : fallback;
 }
 
 std::string JsonReader::string(std::string_view key) { return child(key).as_string(); }
