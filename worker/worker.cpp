@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "common/sha256.h"
-#include "jobs/child_process.h"
+#include "process/child_process.h"
 #include "worker/http_client.h"
 #include "worker/render_progress.h"
 #include "worker/task_dir.h"
