@@ -4,7 +4,7 @@
 #include <chrono>
 #include <memory>
 
-#include "jobs/child_process.h"
+#include "process/child_process.h"
 #include "worker/render_progress.h"
 
 namespace vesper::worker_detail {

@@ -35,7 +35,7 @@ struct RenderRun {
 double estimate_progress(double elapsed, std::optional<double> expected_seconds,
                          const std::string& stderr_tail);
 
-// Starts `argv` (jobs/child_process.h) and waits for it, calling
+// Starts `argv` (process/child_process.h) and waits for it, calling
 // `heartbeat(progress)` every watch.heartbeat_seconds; when that returns
 // false the child is killed and the run is Dropped.
 RenderRun run_render(const std::vector<std::string>& argv, const RenderWatch& watch,
