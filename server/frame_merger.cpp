@@ -5,13 +5,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/secret_token.h"
+#include "common/sha256.h"
 #include "jobs/job_store.h"
 #include "server/blob_store.h"
 #include "server/locked_store.h"
 #include "server/merge.h"
 #include "server/server_clock.h"
-#include "common/secret_token.h"
-#include "common/sha256.h"
 
 namespace fs = std::filesystem;
 

@@ -11,11 +11,11 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "common/secret_token.h"
 #include "protocol/error_body.h"
 #include "server/api_error.h"
 #include "server/metrics.h"
 #include "server/server.h"
-#include "common/secret_token.h"
 #include "server/tokens.h"
 
 namespace vesper {

@@ -8,7 +8,6 @@
 #include "protocol/job_messages.h"
 #include "server/api_error.h"
 #include "server/blob_store.h"
-#include "server/json_body.h"
 #include "server/lease_tracker.h"
 #include "server/locked_store.h"
 #include "server/requests.h"
@@ -45,7 +44,7 @@ protocol::TaskInfo to_wire(const Task& t) {
 }
 
 ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
-  const JobSpec spec = read_job_request(parse_json_body(req.body));
+  const JobSpec spec = read_job_request(req.body);
   namespace f = protocol::field;
   if (!d.blobs.exists(spec.scene)) missing_blob(spec.scene, "", std::string("/") + f::kScene);
   for (size_t i = 0; i < spec.assets.size(); ++i)

@@ -9,7 +9,6 @@
 #include "protocol/worker_messages.h"
 #include "server/api_error.h"
 #include "server/blob_store.h"
-#include "server/json_body.h"
 #include "server/lease_tracker.h"
 #include "server/locked_store.h"
 #include "server/metrics.h"
@@ -35,7 +34,7 @@ constexpr size_t kMaxLogTail = 64 * 1024;
 ApiResponse ok() { return json_response(200, protocol::OkResponse{}); }
 
 ApiResponse register_worker(const WorkerHandlerDeps& d, const ApiRequest& req) {
-  const auto r = read_register_request(parse_json_body(req.body));
+  const auto r = read_register_request(req.body);
   const std::string id = d.workers.add(r.name, d.clock.now());
   spdlog::info("worker '{}' registered as {}", r.name, id);
   return json_response(200, protocol::RegisterResponse{id});
@@ -51,7 +50,7 @@ ApiResponse list(const WorkerHandlerDeps& d, const ApiRequest&) {
 }
 
 ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
-  const auto r = read_lease_request(parse_json_body(req.body));
+  const auto r = read_lease_request(req.body);
   const double t = d.clock.now();
   if (!d.workers.touch(r.worker_id, t))
     throw ApiError(404,
@@ -83,7 +82,7 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
 }
 
 ApiResponse heartbeat(const WorkerHandlerDeps& d, const ApiRequest& req) {
-  const auto r = read_heartbeat_request(parse_json_body(req.body));
+  const auto r = read_heartbeat_request(req.body);
   const double t = d.clock.now();
   const HeartbeatAnswer a = d.store.with([&](JobStore& s) { return s.heartbeat(r.lease_id, t); });
   d.leases.note(r.lease_id, t, a != HeartbeatAnswer::KeepRunning, r.progress);
@@ -94,7 +93,7 @@ ApiResponse heartbeat(const WorkerHandlerDeps& d, const ApiRequest& req) {
 }
 
 ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
-  const auto r = read_complete_request(parse_json_body(req.body));
+  const auto r = read_complete_request(req.body);
   if (!d.blobs.exists(r.result))
     throw ApiError(400,
                    "no blob " + r.result + ": upload the result first (PUT " +
@@ -109,7 +108,7 @@ ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
 }
 
 ApiResponse fail(const WorkerHandlerDeps& d, const ApiRequest& req) {
-  auto r = read_fail_request(parse_json_body(req.body));
+  auto r = read_fail_request(req.body);
   if (r.log.size() > kMaxLogTail) r.log = r.log.substr(r.log.size() - kMaxLogTail);
   const double t = d.clock.now();
   const bool failed = d.store.with([&](JobStore& s) { return s.fail(r.lease_id, r.log, t); });
