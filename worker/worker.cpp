@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "common/sha256.h"
 #include "protocol/worker_messages.h"
 #include "worker/backoff.h"
 #include "worker/blob_cache.h"
-#include "common/sha256.h"
 #include "worker/render_command.h"
 #include "worker/server_api.h"
 #include "worker/task_dir.h"
