@@ -2,6 +2,35 @@
 
 namespace vesper {
 
+const char* to_string(TaskState s) {
+  switch (s) {
+    case TaskState::Queued:
+      return "queued";
+    case TaskState::Leased:
+      return "leased";
+    case TaskState::Done:
+      return "done";
+    case TaskState::Failed:
+      return "failed";
+    case TaskState::Canceled:
+      return "canceled";
+    case TaskState::Paused:
+      return "paused";
+  }
+  return "?";
+}
+const char* to_string(JobState s) {
+  switch (s) {
+    case JobState::Active:
+      return "active";
+    case JobState::Paused:
+      return "paused";
+    case JobState::Canceled:
+      return "canceled";
+  }
+  return "?";
+}
+
 std::string asset_name_problem(std::string_view name) {
   if (name.empty()) return "expected a non-empty relative path";
   if (name.size() > kMaxAssetNameLength)

@@ -20,13 +20,6 @@ Rgb shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& dir
   return Rgb(1.f);
 }
 
-// Position of a point or spot light, for equiangular sampling.
-inline const Vec3* point_light_position(const Light& light) {
-  if (const auto* pl = std::get_if<PointLight>(&light)) return &pl->position;
-  if (const auto* sl = std::get_if<SpotLight>(&light)) return &sl->position;
-  return nullptr;
-}
-
 struct NoDeltaWeight {
   float operator()(size_t) const { return 1.f; }
 };
@@ -50,7 +43,7 @@ DirectSample sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset
   const Vec2 u_light = sampler.next2();
   out.light = li;
   if (pmf <= 0.f) return out;
-  const auto ls = sample_light(scene.lights[li], p, u_light);
+  const auto ls = scene.lights[li].sample(p, u_light);
   if (!ls || ls->pdf <= 0.f || ls->radiance.is_black()) return out;
   const auto [f, f_diffuse, scatter_pdf] = eval(ls->wi);
   if (f.is_black()) return out;

@@ -6,8 +6,6 @@
 namespace vesper {
 namespace {
 
-inline float sample_exponential(float u, float sigma) { return -std::log1p(-u) / sigma; }
-
 std::vector<MajorantSpan>& scratch_spans() {
   thread_local std::vector<MajorantSpan> spans;
   return spans;
@@ -20,30 +18,35 @@ Rgb exp_rgb(const Rgb& x) { return {std::exp(x.r), std::exp(x.g), std::exp(x.b)}
 FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantSpan>& spans,
                               const Ray& ray, Sampler& sampler, Rgb& throughput, Rgb& emitted) {
   const bool emissive = media.has_emission();
+  FreeFlight flight;
   for (const MajorantSpan& span : spans) {
     const float sigma_maj = span.sigma_maj;
-    float t = span.t0;
-    for (;;) {
-      t += sample_exponential(sampler.next1(), sigma_maj);
-      if (!(t < span.t1)) break;  // memoryless: continue in the next span
-      const Vec3 p = ray.origin + ray.dir * t;
-      const MediumCoefficients c = media.coefficients(p);
-      // Collision-integral estimator with a grey majorant: every event's
-      // weight is (its coefficient / sigma_maj) / (its probability).
+    // Collision-integral estimator with a grey majorant: every event's
+    // weight is (its coefficient / sigma_maj) / (its probability).
+    auto at_collision = [&](float t, const Vec3& p, const MediumCoefficients& c) {
       if (emissive && !c.emission.is_black()) emitted += throughput * c.emission / sigma_maj;
       const float p_absorb = c.sigma_a.average() / sigma_maj;
       const float p_scatter = c.sigma_s.average() / sigma_maj;
       const float p_null = std::max(0.f, 1.f - p_absorb - p_scatter);
       const float u = sampler.next1();
-      if (u < p_absorb) return {FlightEvent::Absorbed, t, 0.f};
+      if (u < p_absorb) {
+        flight = {FlightEvent::Absorbed, t, 0.f};
+        return false;
+      }
       if (u < p_absorb + p_scatter) {
         throughput *= c.sigma_s / (sigma_maj * p_scatter);
-        return {FlightEvent::Scattered, t, media.pick_phase_g(p, sampler.next1())};
+        flight = {FlightEvent::Scattered, t, media.pick_phase_g(p, sampler.next1())};
+        return false;
       }
-      if (p_null <= 0.f) return {FlightEvent::Absorbed, t, 0.f};  // rounding: no null mass left
+      if (p_null <= 0.f) {  // rounding: no null mass left
+        flight = {FlightEvent::Absorbed, t, 0.f};
+        return false;
+      }
       const Rgb sigma_n = Rgb(sigma_maj) - c.sigma_a - c.sigma_s;
       throughput *= sigma_n / (sigma_maj * p_null);
-    }
+      return true;
+    };
+    if (!for_each_tentative_collision(media, span, ray, sampler, at_collision)) return flight;
   }
   return {FlightEvent::Escaped, spans.empty() ? 0.f : spans.back().t1, 0.f};
 }
@@ -92,19 +95,17 @@ Rgb estimate_transmittance(const MediaSet& media, const Ray& ray, float tmax, Sa
           media.coefficients(ray.origin + ray.dir * (0.5f * (span.t0 + span.t1)));
       tr *= exp_rgb((c.sigma_a + c.sigma_s) * -(span.t1 - span.t0));
     } else {
-      float t = span.t0;
-      for (;;) {
-        t += sample_exponential(sampler.next1(), span.sigma_maj);
-        if (!(t < span.t1)) break;
-        const MediumCoefficients c = media.coefficients(ray.origin + ray.dir * t);
-        tr *= (Rgb(span.sigma_maj) - c.sigma_a - c.sigma_s) / span.sigma_maj;
-        // Russian roulette once the estimate is small (unbiased).
-        const float m = tr.max_component();
-        if (m < 0.1f) {
-          if (sampler.next1() < 0.5f) return Rgb{};
-          tr *= 2.f;
-        }
-      }
+      const bool went_on = for_each_tentative_collision(
+          media, span, ray, sampler, [&](float, const Vec3&, const MediumCoefficients& c) {
+            tr *= (Rgb(span.sigma_maj) - c.sigma_a - c.sigma_s) / span.sigma_maj;
+            // Russian roulette once the estimate is small (unbiased).
+            if (tr.max_component() < 0.1f) {
+              if (sampler.next1() < 0.5f) return false;
+              tr *= 2.f;
+            }
+            return true;
+          });
+      if (!went_on) return Rgb{};
     }
     if (tr.is_black()) return tr;
   }

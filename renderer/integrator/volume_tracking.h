@@ -1,12 +1,35 @@
 #pragma once
 // Null-scattering estimators over a MediaSet: delta tracking to sample free
 // flights, ratio tracking (or the analytic exponential where only homogeneous
-// media are crossed) for transmittance on shadow rays.
+// media are crossed) for transmittance on shadow rays. Both walk the same
+// tentative collisions (for_each_tentative_collision).
+#include <cmath>
+#include <vector>
+
 #include "renderer/core/ray.h"
 #include "renderer/media/media_set.h"
 #include "renderer/sampling/sampler.h"
 
 namespace vesper {
+
+inline float sample_exponential(float u, float sigma) { return -std::log1p(-u) / sigma; }
+
+// The tentative collisions of null-scattering tracking along one majorant
+// span (after pbrt-v4's SampleT_maj): exponential steps of rate
+// span.sigma_maj from span.t0, each taking one sampler dimension. At every
+// t < span.t1, at_collision(t, position, coefficients there) says whether
+// to go on (a null collision) or to stop. Returns false when it stopped.
+template <typename AtCollision>
+bool for_each_tentative_collision(const MediaSet& media, const MajorantSpan& span, const Ray& ray,
+                                  Sampler& sampler, AtCollision&& at_collision) {
+  float t = span.t0;
+  for (;;) {
+    t += sample_exponential(sampler.next1(), span.sigma_maj);
+    if (!(t < span.t1)) return true;  // memoryless: go on in the next span
+    const Vec3 p = ray.origin + ray.dir * t;
+    if (!at_collision(t, p, media.coefficients(p))) return false;
+  }
+}
 
 enum class FlightEvent { Escaped, Scattered, Absorbed };
 
@@ -16,10 +39,9 @@ struct FreeFlight {
   float g = 0;  // phase function asymmetry of the medium that scattered
 };
 
-// Samples the next real collision along ray within [0, tmax). Updates the
-// path throughput with the null-collision weights and adds volume emission
-// (times throughput) to radiance.
-// `spans` are media.majorant_spans(ray, tmax). Volume emission met on the
+// Samples the next real collision along ray within [0, tmax) by delta
+// tracking; `spans` are media.majorant_spans(ray, tmax). Updates the path
+// throughput with the null-collision weights; volume emission met on the
 // way (times throughput) is added to `emitted`.
 FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantSpan>& spans,
                               const Ray& ray, Sampler& sampler, Rgb& throughput, Rgb& emitted);

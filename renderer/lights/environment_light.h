@@ -1,16 +1,27 @@
 #pragma once
-// Environment at infinity: a constant radiance or a lat-long image, importance
-// sampled by luminance x sin(theta). Mapping (see docs/scene-format.md): for
+// Environment light: radiance arriving from infinitely far away in every
+// direction, a constant or a lat-long image importance-sampled by luminance
+// x sin(theta). Mapping (docs/scene-format.md#environment-images): for
 // (u, v) in [0,1]^2, theta = v*pi from +Y, phi = 2*pi*u,
 // dir = (sin(theta) sin(phi), cos(theta), -sin(theta) cos(phi)), then rotated
 // by `rotation` about +Y.
+//
+// Scene keys ("type": "environment", docs/scene-format.md#lights); either
+// `radiance` or `file`, not both; at most one environment light per scene:
+//   radiance  rgb >= 0, W/(sr m^2)   constant radiance
+//   file      string (path)          lat-long image, linear RGB, any format OIIO reads
+//   scale     number >= 0            default 1, multiplies the image (`file` only)
+//   rotation  degrees                default 0, about +Y, counter-clockwise seen from above
+//                                    (`file` only)
+//   group     string                 optional, light group for layers
+// Radiance is invariant under the unit scale.
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include "renderer/lights/light_sample.h"
+#include "renderer/lights/light_interface.h"
 #include "renderer/math/constants.h"
 #include "renderer/sampling/distribution.h"
 #include "renderer/sampling/warp.h"
@@ -56,7 +67,7 @@ struct EnvironmentLight {
     return map->pixels[size_t(y) * size_t(map->width) + size_t(x)];
   }
 
-  std::optional<LightSample> sample(Vec2 u) const {
+  std::optional<LightSample> sample(const Vec3& /*p*/, Vec2 u) const {
     constexpr float inf = std::numeric_limits<float>::infinity();
     if (!map) {
       const Vec3 wi = sample_uniform_sphere(u);
@@ -69,7 +80,7 @@ struct EnvironmentLight {
     const Vec3 wi = to_world(uv_to_local_dir(uv));
     return LightSample{emitted(wi), wi, inf, pdf_uv / (2.f * kPi * kPi * sin_theta), false};
   }
-  float pdf(const Vec3& wi) const {
+  float pdf(const Vec3& wi, float /*distance*/) const {
     if (!map) return kInv4Pi;
     const Vec3 d = to_local(wi);
     const Vec2 uv = local_dir_to_uv(d);
@@ -77,6 +88,7 @@ struct EnvironmentLight {
     if (sin_theta <= 0.f) return 0.f;
     return map->distribution.pdf(uv) / (2.f * kPi * kPi * sin_theta);
   }
+  // What crosses the scene's bounding sphere.
   float power(float scene_radius) const {
     float avg = constant.average();
     if (map) {
@@ -90,6 +102,7 @@ struct EnvironmentLight {
     }
     return 4.f * kPi * kPi * sqr(scene_radius) * avg;
   }
+  std::optional<LightBounds> bounds() const { return std::nullopt; }
 
   // Builds the sampling distribution: luminance x sin(theta) per texel.
   static std::shared_ptr<EnvironmentMap> make_map(int width, int height, std::vector<Rgb> pixels) {

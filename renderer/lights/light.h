@@ -1,84 +1,61 @@
 #pragma once
-// The closed set of lights, and the choice between them for light sampling.
-#include <algorithm>
-#include <cmath>
+// The closed set of lights behind one interface (light_interface.h). Every
+// operation is one std::visit calling the same method on whichever type is
+// held: no per-type branch here or in the integrator.
 #include <optional>
-#include <string>
+#include <utility>
 #include <variant>
-#include <vector>
 
 #include "renderer/lights/environment_light.h"
+#include "renderer/lights/light_interface.h"
 #include "renderer/lights/point_light.h"
 #include "renderer/lights/quad_light.h"
 #include "renderer/lights/spot_light.h"
 #include "renderer/lights/sun_light.h"
-#include "renderer/sampling/distribution.h"
 
 namespace vesper {
 
-using Light = std::variant<QuadLight, PointLight, SpotLight, SunLight, EnvironmentLight>;
+// A light type, checked against the interface: a type that does not satisfy
+// it fails to compile here, with the requirement it misses in the message.
+template <typename T>
+struct CheckedLightType {
+  static_assert(LightInterface<T>, "every light type implements light_interface.h");
+  using type = T;
+};
 
-inline std::optional<LightSample> sample_light(const Light& light, const Vec3& p, Vec2 u) {
-  return std::visit(
-      [&](const auto& l) -> std::optional<LightSample> {
-        using T = std::decay_t<decltype(l)>;
-        if constexpr (std::is_same_v<T, QuadLight>)
-          return l.sample(p, u);
-        else if constexpr (std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>)
-          return l.sample(p);
-        else
-          return l.sample(u);
-      },
-      light);
-}
+template <typename... Types>
+using LightVariant = std::variant<typename CheckedLightType<Types>::type...>;
 
-inline float light_power(const Light& light, float scene_radius) {
-  return std::visit(
-      [&](const auto& l) -> float {
-        using T = std::decay_t<decltype(l)>;
-        if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, EnvironmentLight>)
-          return l.power(scene_radius);
-        else
-          return l.power();
-      },
-      light);
-}
+// The closed set of light types.
+using LightTypes = LightVariant<QuadLight, PointLight, SpotLight, SunLight, EnvironmentLight>;
 
-// Picks a light with probability half proportional to its power, half
-// uniform. Power alone lets a dim fill light take few shadow rays from the
-// key light, but it also starves small nearby lights (candles) next to a sun
-// whose power is counted over the whole scene even when it only enters
-// through a window; the uniform half bounds every light's share from below.
-class LightSampler {
+template <typename T>
+concept OneOfTheLightTypes = std::constructible_from<LightTypes, T>;
+
+class Light {
  public:
-  LightSampler() = default;
-  LightSampler(const std::vector<Light>& lights, float scene_radius) {
-    if (lights.empty()) return;
-    std::vector<float> power;
-    power.reserve(lights.size());
-    double total = 0;
-    for (const auto& l : lights) {
-      const float p = light_power(l, scene_radius);
-      power.push_back(std::isfinite(p) && p > 0.f ? p : 0.f);
-      total += power.back();
-    }
-    std::vector<float> w;
-    w.reserve(lights.size());
-    // Lights that emit nothing (switched off, zero area) get no samples.
-    const size_t emitting =
-        size_t(std::count_if(power.begin(), power.end(), [](float p) { return p > 0.f; }));
-    for (float p : power)
-      w.push_back(p > 0.f ? float(0.5 * p / total) + 0.5f / float(emitting) : 0.f);
-    dist_ = Distribution1D(std::move(w));
+  // Implicit: any of the light types converts to a Light.
+  template <OneOfTheLightTypes T>
+  Light(T&& light) : light_(std::forward<T>(light)) {}
+
+  std::optional<LightSample> sample(const Vec3& p, Vec2 u) const {
+    return std::visit([&](const auto& l) { return l.sample(p, u); }, light_);
   }
-  bool empty() const { return dist_.size() == 0; }
-  size_t sample(float u, float* pmf, float* u_remapped) const {
-    return dist_.sample_discrete(u, pmf, u_remapped);
+  float pdf(const Vec3& wi, float distance) const {
+    return std::visit([&](const auto& l) { return l.pdf(wi, distance); }, light_);
   }
-  float pmf(size_t light_index) const { return dist_.discrete_pmf(light_index); }
+  Rgb emitted(const Vec3& wi) const {
+    return std::visit([&](const auto& l) { return l.emitted(wi); }, light_);
+  }
+  float power(float scene_radius) const {
+    return std::visit([&](const auto& l) { return l.power(scene_radius); }, light_);
+  }
+  std::optional<LightBounds> bounds() const {
+    return std::visit([](const auto& l) { return l.bounds(); }, light_);
+  }
 
  private:
-  Distribution1D dist_;
+  LightTypes light_;
 };
 
 }  // namespace vesper

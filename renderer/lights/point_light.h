@@ -1,25 +1,35 @@
 #pragma once
-// Isotropic point light; `intensity` is radiant intensity (W/sr).
+// Point light: isotropic, a delta in position.
+//
+// Scene keys ("type": "point", docs/scene-format.md#lights):
+//   position   vec3, scene units   required
+//   intensity  rgb >= 0, W/sr      required
+//   group      string              optional, light group for layers
+// Render space: `intensity` is divided by unit_scale^2 (scene_builder), so
+// the irradiance it gives does not depend on the unit scale.
 #include <cmath>
 #include <optional>
 
-#include "renderer/lights/light_sample.h"
+#include "renderer/lights/light_interface.h"
 #include "renderer/math/constants.h"
 
 namespace vesper {
 
 struct PointLight {
   Vec3 position;
-  Rgb intensity;
+  Rgb intensity;  // W/sr
 
-  std::optional<LightSample> sample(const Vec3& p) const {
+  std::optional<LightSample> sample(const Vec3& p, Vec2 /*u*/) const {
     const Vec3 d = position - p;
     const float dist2 = length_squared(d);
     if (!(dist2 > 0.f)) return std::nullopt;
     const float dist = std::sqrt(dist2);
     return LightSample{intensity / dist2, d / dist, dist, 1.f, true};
   }
-  float power() const { return 4.f * kPi * intensity.average(); }
+  float pdf(const Vec3& /*wi*/, float /*distance*/) const { return 0.f; }
+  Rgb emitted(const Vec3& /*wi*/) const { return {}; }
+  float power(float /*scene_radius*/) const { return 4.f * kPi * intensity.average(); }
+  std::optional<LightBounds> bounds() const { return LightBounds{position, position}; }
 };
 
 }  // namespace vesper

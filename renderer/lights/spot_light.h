@@ -1,10 +1,21 @@
 #pragma once
-// Spot light: radiant intensity times a smoothstep falloff between the
-// falloff_start and cone_angle half-angles (as pbrt-v4's SpotLight).
+// Spot light: a point light whose intensity falls off with a smoothstep
+// between the falloff_start and cone_angle half-angles (as pbrt-v4's
+// SpotLight).
+//
+// Scene keys ("type": "spot", docs/scene-format.md#lights):
+//   position       vec3, scene units                  required
+//   direction      vec3, non-zero (normalized)        required, the cone axis
+//   intensity      rgb >= 0, W/sr                     required, on the axis
+//   cone_angle     degrees, 0 < a <= 180              required, half-angle: no light outside
+//   falloff_start  degrees, 0 <= f <= cone_angle      default cone_angle, half-angle: full
+//                                                     intensity inside
+//   group          string                             optional, light group for layers
+// Render space: `intensity` is divided by unit_scale^2 (scene_builder).
 #include <cmath>
 #include <optional>
 
-#include "renderer/lights/light_sample.h"
+#include "renderer/lights/light_interface.h"
 #include "renderer/math/constants.h"
 
 namespace vesper {
@@ -16,15 +27,15 @@ inline float smoothstep(float a, float b, float x) {
 }
 
 struct SpotLight {
-  Vec3 position, direction;  // direction: unit, the cone axis
-  Rgb intensity;
+  Vec3 position, direction;       // direction: unit, the cone axis
+  Rgb intensity;                  // W/sr on the axis
   float cos_cone = 0.f;           // cos(cone_angle)
   float cos_falloff_start = 0.f;  // cos(falloff_start) >= cos_cone
 
   float falloff(const Vec3& w_from_light) const {
     return smoothstep(cos_cone, cos_falloff_start, dot(w_from_light, direction));
   }
-  std::optional<LightSample> sample(const Vec3& p) const {
+  std::optional<LightSample> sample(const Vec3& p, Vec2 /*u*/) const {
     const Vec3 d = position - p;
     const float dist2 = length_squared(d);
     if (!(dist2 > 0.f)) return std::nullopt;
@@ -34,9 +45,12 @@ struct SpotLight {
     if (f <= 0.f) return std::nullopt;
     return LightSample{intensity * (f / dist2), wi, dist, 1.f, true};
   }
-  float power() const {
+  float pdf(const Vec3& /*wi*/, float /*distance*/) const { return 0.f; }
+  Rgb emitted(const Vec3& /*wi*/) const { return {}; }
+  float power(float /*scene_radius*/) const {
     return intensity.average() * 2.f * kPi * (1.f - 0.5f * (cos_falloff_start + cos_cone));
   }
+  std::optional<LightBounds> bounds() const { return LightBounds{position, position}; }
 };
 
 }  // namespace vesper

@@ -12,7 +12,7 @@
 #include "renderer/bsdf/bsdf.h"
 #include "renderer/core/accel.h"
 #include "renderer/core/camera.h"
-#include "renderer/lights/light.h"
+#include "renderer/lights/light_sampler.h"
 #include "renderer/media/media_set.h"
 #include "renderer/scene/media_builder.h"
 #include "renderer/scene/scene_description.h"

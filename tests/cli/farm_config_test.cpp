@@ -6,6 +6,8 @@
 
 #include <fstream>
 
+#include "tests/common/temp_dir.h"
+
 namespace vesper::cli {
 namespace {
 
@@ -51,16 +53,14 @@ TEST(FarmConfig, ShippedFileSetsEveryKey) {
 class FarmConfigErrors : public ::testing::Test {
  protected:
   std::string error_of(const std::string& text) {
-    const auto p =
-        std::filesystem::temp_directory_path() / ("farm-" + std::to_string(::getpid()) + ".toml");
+    const test::TempDir dir("farm-config");
+    const auto p = dir / "farm.toml";
     std::ofstream(p) << text;
     try {
       load_farm_settings(p);
     } catch (const FarmConfigError& e) {
-      std::filesystem::remove(p);
       return e.what();
     }
-    std::filesystem::remove(p);
     return "";
   }
 };
@@ -83,10 +83,10 @@ TEST_F(FarmConfigErrors, NameTheFileKeyAndProblem) {
 }
 
 TEST(FarmConfig, FileValuesOverrideDefaults) {
-  const auto p = std::filesystem::temp_directory_path() / "farm-override.toml";
+  const test::TempDir dir("farm-config");
+  const auto p = dir / "farm-override.toml";
   std::ofstream(p) << "[server]\nport = 9000\nlease_seconds = 7.5\n[up]\nworkers = 4\n";
   const FarmSettings s = load_farm_settings(p);
-  std::filesystem::remove(p);
   EXPECT_EQ(s.server.port, 9000);
   EXPECT_EQ(s.server.lease_seconds, 7.5);
   EXPECT_EQ(s.up.workers, 4);

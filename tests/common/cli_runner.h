@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "tests/common/temp_dir.h"
+
 namespace vesper::test {
 
 struct RunResult {
@@ -30,15 +32,6 @@ class CliTest : public ::testing::Test {
   // `subcommand` is put before the arguments of every run() ("render", "vdb", ...).
   explicit CliTest(std::string subcommand) : subcommand_(std::move(subcommand)) {}
 
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("vesper-" + subcommand_ + "-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
   RunResult run(const std::string& args) {
     const auto out = dir_ / ".stdout.txt", err = dir_ / ".stderr.txt";
     const std::string cmd = std::string(VESPER_BINARY) + " " + subcommand_ + " " + args + " >" +
@@ -53,7 +46,8 @@ class CliTest : public ::testing::Test {
     return r;
   }
 
-  std::filesystem::path dir_;
+  TempDir temp_{"cli"};
+  std::filesystem::path dir_ = temp_.path();
   std::string subcommand_;
 };
 

@@ -16,6 +16,7 @@
 
 #include "renderer/output/exr_io.h"
 #include "renderer/output/layered_image.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper::comptest {
 
@@ -23,18 +24,8 @@ namespace fs = std::filesystem;
 
 // A scratch folder per test, removed afterwards.
 struct ScratchDir {
-  fs::path path;
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() / ("vesper-comp-test-" + std::to_string(::getpid()) + "-" +
-                                        info->test_suite_name() + "-" + info->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
+  test::TempDir temp{"comp-test"};
+  const fs::path path = temp.path();
   fs::path operator/(const std::string& name) const { return path / name; }
 };
 

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "compositor/grade.h"
+#include "tests/common/temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace vesper;
@@ -27,16 +28,8 @@ const std::string kConfig = bundled_ocio_config();
 const std::string kNightLut = std::string(VESPER_SOURCE_DIR) + "/configs/looks/night.cube";
 
 struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("vesper_grade_test_" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
+  vesper::test::TempDir temp{"grade"};
+  const fs::path path = temp.path();
 };
 
 struct RunResult {

@@ -18,6 +18,7 @@
 
 #include "compositor/histogram.h"
 #include "renderer/output/exr_io.h"
+#include "tests/common/temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace vesper;
@@ -301,10 +302,8 @@ TEST(Histogram, JsonHasTheDocumentedKeys) {
 // (g) PNG plot ----------------------------------------------------------------------------
 
 TEST(Histogram, PlotIsWrittenAtomicallyAndReadable) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("vesper-hist-plot-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const vesper::test::TempDir temp("hist-plot");
+  const fs::path dir = temp.path();
   const RgbaImage base = lognormal_image(128, 128);
   const Histogram h = log2_histogram(base, LumaWeights::Rec709);
   const Histogram r = log2_histogram(exposed(base, 1), LumaWeights::Rec709);
@@ -335,7 +334,6 @@ TEST(Histogram, PlotIsWrittenAtomicallyAndReadable) {
   EXPECT_THROW(write_histogram_png(h, dir / "no" / "such" / "dir.png"), CompError);
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_EQ(e.path().string().find(".tmp-"), std::string::npos);
-  fs::remove_all(dir);
 }
 
 TEST(Histogram, TerminalRenderingHasHeightRowsOfWidthColumnsAndASummary) {
@@ -378,15 +376,6 @@ std::string read_text(const fs::path& p) {
 
 class HistCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vesper-hist-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   RunResult run(const std::string& args) {
     const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
     const std::string cmd = std::string(VESPER_BINARY) + " hist " + args + " >" + out.string() +
@@ -422,7 +411,8 @@ class HistCli : public ::testing::Test {
     return true;
   }
 
-  fs::path dir_;
+  vesper::test::TempDir temp_{"hist"};
+  fs::path dir_ = temp_.path();
 };
 
 }  // namespace

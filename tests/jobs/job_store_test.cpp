@@ -9,6 +9,7 @@
 
 #include "jobs/job_store.h"
 #include "jobs/sqlite_db.h"
+#include "tests/common/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -17,20 +18,12 @@ namespace {
 
 class JobStoreTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vesper-jobs-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   fs::path db() const { return dir_ / "jobs.sqlite"; }
   static JobSpec spec(std::vector<int> frames, int spp = 8, int split = 0, int priority = 50,
                       int attempts = 3) {
     return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts, {}};
   }
-  fs::path dir_;
+  test::TempDir dir_{"jobs"};
 };
 
 TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {

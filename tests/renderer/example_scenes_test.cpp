@@ -9,6 +9,7 @@
 #include "renderer/scene/scene_loader.h"
 #include "renderer/volume/cloud.h"
 #include "renderer/volume/vdb_io.h"
+#include "tests/common/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -64,8 +65,7 @@ TEST(ExampleScenes, RealSmokeSimulationLoadsAndRenders) {
 }
 
 TEST(ExampleScenes, ProceduralCloudSceneRendersFromAGeneratedVdb) {
-  const fs::path dir = fs::temp_directory_path() / ("vesper-cloud-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const test::TempDir dir("cloud");
   CloudParams p;
   p.resolution = 48;
   p.voxel_size = 2.56 / 48;
@@ -73,7 +73,6 @@ TEST(ExampleScenes, ProceduralCloudSceneRendersFromAGeneratedVdb) {
   fs::copy_file(kScenes / "cloud/scene.json", dir / "scene.json");
   const SceneDescription d = load_scene(dir / "scene.json");
   EXPECT_GT(render_small(d), 0.0);
-  fs::remove_all(dir);
 }
 
 }  // namespace

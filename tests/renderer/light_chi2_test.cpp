@@ -2,16 +2,19 @@
 // distributed as the density it reports (which MIS relies on).
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "chi2.h"
-#include "renderer/lights/light.h"
+#include "renderer/lights/light_sampler.h"
 #include "renderer/sampling/sampler.h"
 
 namespace vesper {
 namespace {
 
 constexpr int kTests = 6;
+// Distant lights ignore the reference point and the distance.
+constexpr float kInf = std::numeric_limits<float>::infinity();
 const double kLevel = stats::sidak_alpha(0.01, kTests);
 
 // Distance along wi from p to the quad, or < 0 when wi misses it.
@@ -77,8 +80,8 @@ TEST(LightChi2, SunDiskSamplesItsCone) {
   opt.pole = sun.direction;
   opt.theta_bins = 40;
   const auto r =
-      stats::chi2_test([&]() -> std::optional<Vec3> { return sun.sample(s.next2())->wi; },
-                       [&](const Vec3& wi) -> double { return sun.pdf(wi); }, opt);
+      stats::chi2_test([&]() -> std::optional<Vec3> { return sun.sample({}, s.next2())->wi; },
+                       [&](const Vec3& wi) -> double { return sun.pdf(wi, kInf); }, opt);
   EXPECT_GT(r.p_value, kLevel) << r.message;
 }
 
@@ -107,11 +110,11 @@ void expect_env_sampling_matches_pdf(const EnvironmentLight& env) {
   opt.phi_bins = 32;
   const auto r = stats::chi2_test(
       [&]() -> std::optional<Vec3> {
-        const auto ls = env.sample(s.next2());
+        const auto ls = env.sample({}, s.next2());
         if (!ls) return std::nullopt;
         return ls->wi;
       },
-      [&](const Vec3& wi) -> double { return env.pdf(wi); }, opt);
+      [&](const Vec3& wi) -> double { return env.pdf(wi, kInf); }, opt);
   EXPECT_GT(r.p_value, kLevel) << r.message;
   EXPECT_NEAR(r.pdf_integral, 1.0, 1e-2);
 }
@@ -128,7 +131,7 @@ TEST(LightChi2, EnvironmentSampleRadianceMatchesLookup) {
   const EnvironmentLight env = random_environment(25.f);
   Sampler s(uint64_t(5));
   for (int i = 0; i < 10000; ++i) {
-    const auto ls = env.sample(s.next2());
+    const auto ls = env.sample({}, s.next2());
     ASSERT_TRUE(ls);
     EXPECT_EQ(ls->radiance, env.emitted(ls->wi)) << "sample " << i;
   }

@@ -16,6 +16,7 @@
 #include "renderer/output/partial_io.h"
 #include "renderer/render/frame.h"
 #include "renderer/scene/scene_loader.h"
+#include "tests/common/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -108,15 +109,8 @@ void expect_same_metadata_but_time(const LayeredImage& a, const LayeredImage& b)
 
 class PartialFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vesper-partial-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  TempDir temp_{"partial"};
+  fs::path dir_ = temp_.path();
 };
 
 TEST_F(PartialFiles, FourUnevenRangesMergeBitwiseToTheSingleRender) {

@@ -15,6 +15,7 @@
 #include "renderer/scene/environment_image.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/volume/vdb_io.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper {
 namespace {
@@ -42,22 +43,7 @@ json minimal_scene() {
   })");
 }
 
-// A per-test scratch directory, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    path_ = fs::temp_directory_path() /
-            ("vesper_scene_test_" + std::to_string(::getpid()) + "_" +
-             ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 

@@ -1,6 +1,7 @@
 #pragma once
-// Helpers for the OpenVDB tests: a per-test temporary directory and small
-// dense volumes written through write_vdb_fog_volume (no committed binaries).
+// Helpers for the OpenVDB tests: a per-test temporary directory
+// (tests/common/temp_dir.h) and small dense volumes written through
+// write_vdb_fog_volume (no committed binaries).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,25 +11,11 @@
 #include <string>
 
 #include "renderer/volume/vdb_io.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper::test {
 
-class VdbTempDir {
- public:
-  VdbTempDir() {
-    path_ = std::filesystem::temp_directory_path() /
-            ("vesper-vdb-" + std::to_string(::getpid()) + "-" +
-             ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~VdbTempDir() { std::filesystem::remove_all(path_); }
-  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using VdbTempDir = TempDir;
 
 // nx*ny*nz voxels with value f(i, j, k).
 inline DenseVolume make_volume(int nx, int ny, int nz, const std::function<float(int, int, int)>& f,

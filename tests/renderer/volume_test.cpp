@@ -11,6 +11,7 @@
 #include "renderer/volume/vdb_io.h"
 #include "scene_fixtures.h"
 #include "test_grids.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper::test {
 namespace {
@@ -103,16 +104,13 @@ TEST(Transmittance, RatioTrackingThroughConstantVdbFileMatchesBeerLambert) {
   vol.values.assign(size_t(n * n * n), 1.f);
   vol.voxel_size = h;
   vol.origin = {0, 0, 0};
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("vesper-tr-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const TempDir dir("tr");
   write_vdb_fog_volume(vol, "density", dir / "c.vdb");
   VdbMediumDesc v;
   v.file = (dir / "c.vdb").string();
   v.density = load_vdb_grid(dir / "c.vdb", "density");
   v.sigma_a = Rgb(0.5f);
   v.sigma_s = Rgb(1.0f);
-  std::filesystem::remove_all(dir);
   SceneDescription d = empty_scene(4, 4, 1, 1);
   d.camera.from = {0.55, 0.55, -3};
   d.camera.to = {0.55, 0.55, 0};

@@ -20,6 +20,7 @@
 
 #include "common/sha256.h"
 #include "server/server.h"
+#include "tests/common/temp_dir.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -29,17 +30,8 @@ namespace {
 
 class ServerTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vesper-server-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    clock_ = std::make_shared<std::atomic<double>>(1000.0);
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
+  void SetUp() override { clock_ = std::make_shared<std::atomic<double>>(1000.0); }
+  void TearDown() override { server_.reset(); }
 
   ServerConfig config() const {
     ServerConfig c;
@@ -115,7 +107,8 @@ class ServerTest : public ::testing::Test {
     return post_ok("/lease", {{"worker_id", worker}}, wrk());
   }
 
-  fs::path dir_;
+  test::TempDir temp_{"server"};
+  fs::path dir_ = temp_.path();
   std::shared_ptr<std::atomic<double>> clock_;
   std::unique_ptr<Server> server_;
   int port_ = 0;

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/sha256.h"
+#include "tests/common/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -26,22 +27,18 @@ std::string slurp(const fs::path& p) {
 class TaskDirTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    cache_ = fs::temp_directory_path() /
-             ("vesper-taskdir-" + std::to_string(::getpid()) + "-" +
-              ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(cache_);
     fs::create_directories(cache_ / "tmp");
     scene_ = put("{\"format\": \"vesper-scene/1\"}", true);
     mesh_ = put("v 0 0 0\n", false);
   }
-  void TearDown() override { fs::remove_all(cache_); }
   std::string put(const std::string& bytes, bool scene) {
     const std::string h = sha256_hex(bytes);
     std::ofstream(scene ? cache_ / (h + ".json") : asset_cache_file(cache_, h), std::ios::binary)
         << bytes;
     return h;
   }
-  fs::path cache_;
+  test::TempDir temp_{"taskdir"};
+  fs::path cache_ = temp_.path();
   std::string scene_, mesh_;
 };
 

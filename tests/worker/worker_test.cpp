@@ -21,6 +21,7 @@
 
 #include "common/sha256.h"
 #include "server/server.h"
+#include "tests/common/temp_dir.h"
 #include "worker/worker.h"
 
 namespace fs = std::filesystem;
@@ -83,17 +84,7 @@ struct StopOnExit {
 
 class WorkerTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vesper-worker-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(dir_);
-  }
+  void TearDown() override { server_.reset(); }
 
   void start(int blocklist_threshold = 3) {
     ServerConfig c;
@@ -181,7 +172,8 @@ class WorkerTest : public ::testing::Test {
     return read_exr(p);
   }
 
-  fs::path dir_;
+  test::TempDir temp_{"worker"};
+  fs::path dir_ = temp_.path();
   std::unique_ptr<Server> server_;
   int port_ = 0;
 };

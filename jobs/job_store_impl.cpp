@@ -1,0 +1,155 @@
+#include "jobs/job_store_impl.h"
+
+#include <tuple>
+
+namespace vesper {
+
+TaskState parse_task_state(const std::string& s) {
+  for (TaskState t : {TaskState::Queued, TaskState::Leased, TaskState::Done, TaskState::Failed,
+                      TaskState::Canceled, TaskState::Paused})
+    if (s == to_string(t)) return t;
+  throw StoreError("unknown task state '" + s + "' in the store");
+}
+
+JobState parse_job_state(const std::string& s) {
+  for (JobState j : {JobState::Active, JobState::Paused, JobState::Canceled})
+    if (s == to_string(j)) return j;
+  throw StoreError("unknown job state '" + s + "' in the store");
+}
+
+Task read_task(const sql::Stmt& s) {
+  Task t;
+  t.id = s.i64(0);
+  t.job_id = s.i64(1);
+  t.frame = int(s.i64(2));
+  t.sample_begin = int(s.i64(3));
+  t.sample_end = int(s.i64(4));
+  t.state = parse_task_state(s.text(5));
+  t.attempts = int(s.i64(6));
+  t.worker = s.text(7);
+  t.result = s.text(8);
+  t.log = s.text(9);
+  t.reused_from = s.i64(10);  // NULL reads as 0
+  return t;
+}
+
+int JobStore::Impl::version() const {
+  sql::Stmt s(db, "SELECT version FROM schema_version");
+  return s.step() ? int(s.i64(0)) : 0;
+}
+
+std::optional<Task> JobStore::Impl::task(int64_t id) const {
+  sql::Stmt s(db, (std::string("SELECT ") + kTaskColumns + " FROM tasks WHERE id = ?1").c_str());
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return read_task(s);
+}
+
+std::optional<Task> JobStore::Impl::leased_task(const std::string& lease_id) const {
+  sql::Stmt s(db, (std::string("SELECT ") + kTaskColumns +
+                   " FROM tasks WHERE lease_id = ?1 AND state = 'leased'")
+                      .c_str());
+  s.bind(1, lease_id);
+  if (!s.step()) return std::nullopt;
+  return read_task(s);
+}
+
+std::vector<Asset> JobStore::Impl::assets(int64_t job) const {
+  sql::Stmt s(db, "SELECT name, blob FROM job_assets WHERE job_id = ?1 ORDER BY ord");
+  s.bind(1, job);
+  std::vector<Asset> out;
+  while (s.step()) out.push_back({s.text(0), s.text(1)});
+  return out;
+}
+
+std::vector<FrameStatus> JobStore::Impl::frames(int64_t job, std::optional<int> only) const {
+  sql::Stmt s(db,
+              "SELECT t.frame, t.state, t.result, o.blob FROM tasks t LEFT JOIN frame_outputs o "
+              "ON o.job_id = t.job_id AND o.frame = t.frame WHERE t.job_id = ?1 AND (?2 = 0 OR "
+              "t.frame = ?3) ORDER BY t.frame, t.sample_begin");
+  s.bind(1, job).bind(2, int64_t(only ? 1 : 0)).bind(3, int64_t(only.value_or(0)));
+  std::vector<FrameStatus> out;
+  while (s.step()) {
+    const int frame = int(s.i64(0));
+    if (out.empty() || out.back().frame != frame) {
+      out.emplace_back();
+      out.back().frame = frame;
+      out.back().output = s.text(3);
+    }
+    FrameStatus& f = out.back();
+    ++f.tasks;
+    switch (parse_task_state(s.text(1))) {
+      case TaskState::Done:
+        ++f.done;
+        f.results.push_back(s.text(2));
+        break;
+      case TaskState::Failed:
+        ++f.failed;
+        break;
+      case TaskState::Canceled:
+        ++f.canceled;
+        break;
+      default:
+        break;
+    }
+  }
+  return out;
+}
+
+std::string JobStore::Impl::record_output(int64_t job, int frame, const std::string& blob,
+                                          double now) {
+  sql::Stmt(db,
+            "INSERT INTO frame_outputs(job_id, frame, blob, created) VALUES(?1, ?2, ?3, ?4) "
+            "ON CONFLICT(job_id, frame) DO NOTHING")
+      .bind(1, job)
+      .bind(2, int64_t(frame))
+      .bind(3, blob)
+      .bind(4, now)
+      .run();
+  sql::Stmt s(db, "SELECT blob FROM frame_outputs WHERE job_id = ?1 AND frame = ?2");
+  s.bind(1, job).bind(2, int64_t(frame));
+  return s.step() ? s.text(0) : std::string();
+}
+
+void JobStore::Impl::record_output_if_single_task_frame(const Task& task, const std::string& result,
+                                                        double now) {
+  const auto frame = frames(task.job_id, task.frame);
+  if (frame.size() == 1 && frame[0].tasks == 1 && frame[0].complete())
+    record_output(task.job_id, task.frame, result, now);
+}
+
+void JobStore::Impl::record_failure(int64_t task_id, int64_t job_id, const std::string& worker,
+                                    const std::string& log) {
+  sql::Stmt(
+      db,
+      "UPDATE tasks SET attempts = attempts + 1, lease_id = NULL, lease_expiry = NULL, log = ?2, "
+      "state = CASE WHEN attempts + 1 >= (SELECT max_attempts FROM jobs WHERE id = job_id) "
+      "THEN 'failed' ELSE 'queued' END WHERE id = ?1")
+      .bind(1, task_id)
+      .bind(2, log)
+      .run();
+  if (!worker.empty())
+    sql::Stmt(db,
+              "INSERT INTO worker_task_failures(job_id, worker, task_id, failures) "
+              "VALUES(?1, ?2, ?3, 1) ON CONFLICT(job_id, worker, task_id) "
+              "DO UPDATE SET failures = failures + 1")
+        .bind(1, job_id)
+        .bind(2, worker)
+        .bind(3, task_id)
+        .run();
+}
+
+int JobStore::Impl::expire(double now) {
+  std::vector<std::tuple<int64_t, int64_t, std::string>> expired;
+  {
+    sql::Stmt s(
+        db, "SELECT id, job_id, worker FROM tasks WHERE state = 'leased' AND lease_expiry < ?1");
+    s.bind(1, now);
+    while (s.step()) expired.emplace_back(s.i64(0), s.i64(1), s.text(2));
+  }
+  for (const auto& [id, job, worker] : expired)
+    record_failure(id, job, worker, "lease expired (worker lost)");
+  return int(expired.size());
+}
+
+}  // namespace vesper

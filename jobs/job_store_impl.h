@@ -1,0 +1,48 @@
+#pragma once
+// JobStore's internals, shared by the files that implement it (job_store.cpp,
+// scheduling.cpp, result_reuse.cpp): the database, the options, and the
+// queries several operations need. Not part of the public API.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "jobs/job_store.h"
+#include "jobs/sqlite_db.h"
+
+namespace vesper {
+
+TaskState parse_task_state(const std::string& s);
+JobState parse_job_state(const std::string& s);
+
+// The columns read_task() reads, in its order: "SELECT <kTaskColumns> FROM tasks ...".
+inline constexpr const char* kTaskColumns =
+    "id, job_id, frame, sample_begin, sample_end, state, attempts, worker, result, log, "
+    "reused_from";
+Task read_task(const sql::Stmt& s);
+
+struct JobStore::Impl {
+  sql::Db db;
+  StoreOptions options;
+  Impl(const std::filesystem::path& file, StoreOptions o) : db(file.string()), options(o) {}
+
+  int version() const;
+  std::optional<Task> task(int64_t id) const;
+  // The current task of a lease id, if the lease is still current.
+  std::optional<Task> leased_task(const std::string& lease_id) const;
+  std::vector<Asset> assets(int64_t job) const;
+  // A job's frames (or only frame `only`), ascending.
+  std::vector<FrameStatus> frames(int64_t job, std::optional<int> only) const;
+
+  // Records a frame's output unless one is recorded already; returns the recorded blob.
+  std::string record_output(int64_t job, int frame, const std::string& blob, double now);
+  // A frame of one task: its result, just committed, is the frame's output.
+  void record_output_if_single_task_frame(const Task& task, const std::string& result, double now);
+
+  // Failed attempt bookkeeping shared by fail() and lease expiry.
+  void record_failure(int64_t task_id, int64_t job_id, const std::string& worker,
+                      const std::string& log);
+  // Requeues the tasks whose lease expired before `now`; returns how many.
+  int expire(double now);
+};
+
+}  // namespace vesper

@@ -1,0 +1,45 @@
+#include "jobs/result_reuse.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "jobs/job_store_impl.h"
+
+namespace vesper {
+
+std::string inputs_key(const JobSpec& spec) {
+  std::vector<std::string> assets;
+  for (const Asset& a : spec.assets) assets.push_back(a.name + "=" + a.blob);
+  std::sort(assets.begin(), assets.end());
+  std::string key = spec.scene + ";spp=" + std::to_string(spec.spp);
+  for (const auto& a : assets) key += ";" + a;
+  return key;
+}
+
+bool complete_from_identical_task(JobStore::Impl& store, int64_t task_id,
+                                  const std::string& renderer, double now) {
+  if (renderer.empty()) return false;
+  sql::Stmt same(store.db,
+                 "SELECT d.id, d.result FROM tasks t JOIN jobs j ON j.id = t.job_id "
+                 "JOIN tasks d ON d.state = 'done' AND d.frame = t.frame AND "
+                 "d.sample_begin = t.sample_begin AND d.sample_end = t.sample_end AND "
+                 "d.renderer = ?2 AND d.result <> '' AND d.id <> t.id "
+                 "JOIN jobs dj ON dj.id = d.job_id AND dj.inputs_key = j.inputs_key "
+                 "WHERE t.id = ?1 AND j.inputs_key <> '' ORDER BY d.id LIMIT 1");
+  same.bind(1, task_id).bind(2, renderer);
+  if (!same.step()) return false;
+  const int64_t source = same.i64(0);
+  const std::string result = same.text(1);
+  sql::Stmt(store.db,
+            "UPDATE tasks SET state = 'done', result = ?2, renderer = ?3, reused_from = ?4 "
+            "WHERE id = ?1")
+      .bind(1, task_id)
+      .bind(2, result)
+      .bind(3, renderer)
+      .bind(4, source)
+      .run();
+  store.record_output_if_single_task_frame(*store.task(task_id), result, now);
+  return true;
+}
+
+}  // namespace vesper

@@ -1,0 +1,59 @@
+#include "renderer/integrator/equiangular_sampling.h"
+
+#include <optional>
+
+#include "renderer/integrator/direct_lighting.h"
+#include "renderer/integrator/equiangular.h"
+#include "renderer/integrator/volume_tracking.h"
+#include "renderer/media/henyey_greenstein.h"
+
+namespace vesper {
+namespace {
+
+// The segment from the first span's start to the last span's end, seen from
+// the light when it is a single point (point and spot lights).
+std::optional<EquiangularSegment> segment_toward(const Light& light, const Ray& ray,
+                                                 const std::vector<MajorantSpan>& spans) {
+  const std::optional<LightBounds> b = light.bounds();
+  if (!b || !b->is_point()) return std::nullopt;
+  return EquiangularSegment::make(ray.origin, ray.dir, b->lo, spans.front().t0, spans.back().t1);
+}
+
+}  // namespace
+
+float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<MajorantSpan>& spans,
+                      float t) {
+  const auto seg = segment_toward(light, ray, spans);
+  return seg ? seg->pdf(t) : 0.f;
+}
+
+EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
+                                     const std::vector<MajorantSpan>& spans, const Rgb& throughput,
+                                     Sampler& sampler, uint32_t& rays) {
+  EquiangularSample out;
+  float pmf = 0.f, u_rest = 0.f;
+  const size_t li = scene.light_sampler.sample(sampler.next1(), &pmf, &u_rest);
+  const Vec2 u_eq = sampler.next2();
+  out.light = li;
+  const Light& light = scene.lights[li];
+  const auto seg = segment_toward(light, ray, spans);
+  if (!seg || !(pmf > 0.f)) return out;
+  const float t = seg->sample(u_eq.x);
+  const float pdf_e = seg->pdf(t);
+  const Vec3 x = ray.origin + ray.dir * t;
+  const MediumCoefficients c = scene.media.coefficients(x);
+  const auto ls = light.sample(x, {});
+  if (!(pdf_e > 0.f) || c.sigma_s.is_black() || !ls || ls->radiance.is_black()) return out;
+  const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y)};
+  const float f = phase.eval(-ray.dir, ls->wi);
+  const Rgb tr_light =
+      shadow_transmittance<true>(scene, x, ls->wi, ls->distance * (1.f - 1e-4f), sampler, rays);
+  if (tr_light.is_black()) return out;
+  const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
+  const float w = power_heuristic(pdf_e, pdf_a);
+  const Rgb tr = analytic_transmittance(scene.media, spans, ray, t);
+  out.value = throughput * tr * c.sigma_s * ls->radiance * tr_light * (f * w / (pdf_e * pmf));
+  return out;
+}
+
+}  // namespace vesper

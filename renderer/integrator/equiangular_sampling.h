@@ -1,0 +1,34 @@
+#pragma once
+// Equiangular sampling as a strategy of the medium step: on a ray whose
+// majorant spans are all analytic (homogeneous media, where the density of
+// distance sampling is known exactly), a distance toward a light that is a
+// single point, combined by MIS (power heuristic) with distance sampling
+// followed by next-event estimation.
+#include <vector>
+
+#include "renderer/core/ray.h"
+#include "renderer/media/media_set.h"
+#include "renderer/sampling/sampler.h"
+#include "renderer/scene/scene.h"
+
+namespace vesper {
+
+// Density (per unit t) with which sample_equiangular picks t toward `light`
+// over the spans' extent; 0 for lights that are not a single point.
+float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<MajorantSpan>& spans,
+                      float t);
+
+struct EquiangularSample {
+  Rgb value;  // path throughput included; black when nothing was added
+  size_t light = 0;
+};
+
+// One single-scattering estimate along `ray`: a light picked by the scene's
+// light sampler, a distance toward it, the light seen from there through the
+// media, MIS-weighted against distance sampling. Uses 3 sampler dimensions
+// (and more for the shadow ray's transmittance).
+EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
+                                     const std::vector<MajorantSpan>& spans, const Rgb& throughput,
+                                     Sampler& sampler, uint32_t& rays);
+
+}  // namespace vesper

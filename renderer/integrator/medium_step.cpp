@@ -1,0 +1,108 @@
+#include "renderer/integrator/medium_step.h"
+
+#include <algorithm>
+#include <tuple>
+#include <vector>
+
+#include "renderer/integrator/direct_lighting.h"
+#include "renderer/integrator/equiangular_sampling.h"
+#include "renderer/integrator/volume_tracking.h"
+#include "renderer/media/henyey_greenstein.h"
+
+namespace vesper {
+namespace {
+
+bool all_analytic(const std::vector<MajorantSpan>& spans) {
+  return !spans.empty() &&
+         std::all_of(spans.begin(), spans.end(), [](const MajorantSpan& s) { return s.analytic; });
+}
+
+// Adds the equiangular estimate along ray. At depth 0 its scattering would be
+// the path's first event: a volume one, whatever the path does next.
+void add_equiangular(PathContext& ctx, const Ray& ray, const std::vector<MajorantSpan>& spans,
+                     int depth, const Rgb& throughput) {
+  const EquiangularSample es =
+      sample_equiangular(ctx.scene, ray, spans, throughput, ctx.sampler, ctx.result.rays);
+  if (es.value.is_black()) return;
+  const int group = ctx.scene.light_group[es.light];
+  if (depth == 0 && ctx.options.record) {
+    ctx.result.radiance += es.value;
+    ctx.options.record->add_as(FirstEvent::Volume, false, group, es.value);
+  } else {
+    ctx.add(es.value, depth + 1, group);
+  }
+}
+
+// Next-event estimation from the point at distance t along ray, where the
+// path scattered. When equiangular sampling ran on this ray, delta lights are
+// weighted against it.
+void add_direct_light(PathContext& ctx, const Ray& ray, const std::vector<MajorantSpan>& spans,
+                      float t, const HgPhase& phase, bool equiangular, int depth,
+                      const Rgb& throughput) {
+  const Scene& scene = ctx.scene;
+  const Vec3 p = ray.origin + ray.dir * t;
+  const Vec3 wo = -ray.dir;
+  auto eval_phase = [&](const Vec3& wi) {
+    const float f = phase.eval(wo, wi);
+    return std::tuple{Rgb(f), Rgb{}, f};
+  };
+  DirectSample ds;
+  if (equiangular) {
+    const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
+    auto delta_weight = [&](size_t li) {
+      return power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t));
+    };
+    ds = sample_direct<true>(scene, p, Vec3(0.f), ctx.sampler, ctx.result.rays, eval_phase,
+                             delta_weight);
+  } else {
+    ds = sample_direct<true>(scene, p, Vec3(0.f), ctx.sampler, ctx.result.rays, eval_phase);
+  }
+  if (!ds.value.is_black()) ctx.add(throughput * ds.value, depth + 1, scene.light_group[ds.light]);
+}
+
+// At a real scattering collision: light from there, then the next ray.
+void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const FreeFlight& flight,
+             bool equiangular, int depth, PathState& path) {
+  const HgPhase phase{flight.g};
+  if (ctx.have_lights()) {
+    add_direct_light(ctx, path.ray, spans, flight.t, phase, equiangular, depth, path.throughput);
+  } else {
+    // Keep the sample dimensions aligned whether or not NEE ran.
+    ctx.sampler.next1();
+    ctx.sampler.next2();
+  }
+  const Vec3 p = path.ray.origin + path.ray.dir * flight.t;
+  const Vec3 wo = -path.ray.dir;
+  const Vec3 wi = phase.sample(wo, ctx.sampler.next2());
+  path.prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
+  path.count_emission_fully = false;
+  path.ray = Ray{p, wi};
+}
+
+}  // namespace
+
+MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& path) {
+  const Scene& scene = ctx.scene;
+  const PathTracerOptions& options = ctx.options;
+  thread_local std::vector<MajorantSpan> spans;
+  scene.media.majorant_spans(path.ray, tmax, spans);
+  if (depth == 0 && options.want_camera_transmittance)
+    ctx.result.camera_transmittance =
+        estimate_transmittance(scene.media, path.ray, tmax, ctx.sampler).average();
+  const bool equiangular =
+      options.equiangular && all_analytic(spans) && ctx.have_lights() && depth < options.max_depth;
+  if (equiangular) add_equiangular(ctx, path.ray, spans, depth, path.throughput);
+
+  Rgb emitted;
+  const FreeFlight flight =
+      sample_free_flight(scene.media, spans, path.ray, ctx.sampler, path.throughput, emitted);
+  if (!emitted.is_black()) ctx.add(emitted, depth, scene.emission_group, depth == 0);
+  if (flight.event == FlightEvent::Absorbed) return MediumEvent::PathEnded;
+  if (flight.event == FlightEvent::Escaped) return MediumEvent::None;
+  if (depth >= options.max_depth) return MediumEvent::PathEnded;
+  if (depth == 0 && options.record) options.record->set_first_volume();
+  scatter(ctx, spans, flight, equiangular, depth, path);
+  return MediumEvent::Scattered;
+}
+
+}  // namespace vesper
