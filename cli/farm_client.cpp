@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "cli/local_server.h"
 #include "common/sha256.h"
 #include "worker/http_client.h"
 
@@ -48,12 +49,14 @@ std::string resolve_server_url(const FarmSettings& settings,
   return settings.worker.server;
 }
 
-std::string resolve_token(const FarmSettings& settings, const std::optional<std::string>& token,
-                          TokenRole role) {
+std::string resolve_token(const FarmSettings& settings, const std::string& server_url,
+                          const std::optional<std::string>& token, TokenRole role) {
   if (token) return *token;
   const char* var = role == TokenRole::Submitter ? "VESPER_TOKEN" : "VESPER_WORKER_TOKEN";
   if (const char* v = env(var)) return v;
-  const std::filesystem::path file = expand_user(settings.server.data_dir) / "tokens.json";
+  const std::filesystem::path file =
+      local_server_data_dir(server_url).value_or(expand_user(settings.server.data_dir)) /
+      "tokens.json";
   const char* key = role == TokenRole::Submitter ? "submitter" : "worker";
   std::ifstream in(file);
   const bool readable = bool(in);

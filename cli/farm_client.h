@@ -28,10 +28,11 @@ enum class TokenRole { Submitter, Worker };
 // The server URL: `url` if given, else $VESPER_SERVER, else settings.worker.server.
 std::string resolve_server_url(const FarmSettings& settings, const std::optional<std::string>& url);
 // The token: `token` if given, else $VESPER_TOKEN (submitter) / $VESPER_WORKER_TOKEN
-// (worker), else the server data dir's tokens.json (a farm on this machine).
+// (worker), else the tokens.json of the server at `server_url` if it runs on
+// this machine (local_server.h), else of the settings' data dir.
 // Throws FarmClientError saying where it looked.
-std::string resolve_token(const FarmSettings& settings, const std::optional<std::string>& token,
-                          TokenRole role);
+std::string resolve_token(const FarmSettings& settings, const std::string& server_url,
+                          const std::optional<std::string>& token, TokenRole role);
 
 class FarmClient {
  public:

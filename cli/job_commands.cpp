@@ -19,8 +19,8 @@ template <typename Body>
 int with_client(const JobCommandOptions& o, Body&& body) {
   try {
     const FarmSettings settings = load_farm_settings(o.farm.config);
-    FarmClient client(resolve_server_url(settings, o.farm.server),
-                      resolve_token(settings, o.farm.token, TokenRole::Submitter));
+    const std::string url = resolve_server_url(settings, o.farm.server);
+    FarmClient client(url, resolve_token(settings, url, o.farm.token, TokenRole::Submitter));
     return body(client);
   } catch (const FarmConfigError& e) {
     spdlog::error("{}", e.what());

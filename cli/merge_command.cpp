@@ -5,33 +5,48 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "cli/commands.h"
+#include "cli/frame_output.h"
 #include "cli/parent_watch.h"
-#include "renderer/output/exr_io.h"
 #include "renderer/output/partial_io.h"
 
 namespace vesper::cli {
 
+namespace {
+
+// The merged frame's number (vesper:frame, from `vesper render --frame`), for #### in -o.
+std::optional<long> frame_of(const LayeredImage& image) {
+  const auto it = image.metadata.find("vesper:frame");
+  if (it == image.metadata.end()) return std::nullopt;
+  return std::stol(it->second);
+}
+
+}  // namespace
+
 int run_merge(const MergeCommandOptions& o) {
   if (!die_with_parent()) return 1;
-  const std::filesystem::path out_path(o.output);
-  if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path())) {
-    spdlog::error("{}: output directory does not exist", out_path.parent_path().string());
-    return 2;
-  }
+  std::unique_ptr<FrameOutput> output;
   LayeredImage merged;
   std::vector<Partial> parts;
+  std::filesystem::path out_path;
   try {
+    output = std::make_unique<FrameOutput>(o.output, false);
     parts.reserve(o.inputs.size());
     for (const std::string& in : o.inputs) parts.push_back(read_partial(in));
     merged = merge_partials(parts);
+    out_path = output->path(frame_of(merged));
+  } catch (const OutputError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
   } catch (const PartialError& e) {
     spdlog::error("{}", e.what());
     return 2;
   }
   try {
-    write_exr(merged, out_path);
+    output->write(merged, out_path);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

@@ -2,13 +2,20 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 
 namespace vesper::cli {
+namespace {
+std::atomic<bool> g_silenced{false};
+}  // namespace
+
+void silence_progress() { g_silenced = true; }
 
 Progress::Progress(std::string label)
     : label_(std::move(label)),
       tty_(::isatty(STDERR_FILENO) != 0),
+      quiet_(g_silenced),
       start_(std::chrono::steady_clock::now()) {}
 
 namespace {
@@ -26,7 +33,7 @@ std::string format_seconds(double s) {
 
 void Progress::update(size_t done, size_t total) {
   std::lock_guard lock(mutex_);
-  if (finished_ || total == 0) return;
+  if (quiet_ || finished_ || total == 0) return;
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double frac = double(done) / double(total);
@@ -54,7 +61,7 @@ void Progress::finish() {
   std::lock_guard lock(mutex_);
   if (finished_) return;
   finished_ = true;
-  if (tty_) std::fprintf(stderr, "\n");
+  if (tty_ && !quiet_) std::fprintf(stderr, "\n");
 }
 
 }  // namespace vesper::cli

@@ -2,8 +2,11 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "cli/commands.h"
+#include "cli/frame_output.h"
 #include "cli/parent_watch.h"
 #include "cli/progress.h"
 #include "renderer/output/exr_io.h"
@@ -35,27 +38,49 @@ std::vector<Aov> parse_aovs(const std::string& list) {
   return aovs;
 }
 
+// The sample range [begin, end) this run renders, checked; nullopt after
+// logging the problem (a usage error).
+std::optional<std::pair<int, int>> sample_range(const RenderCommandOptions& o, int spp) {
+  const int begin = o.sample_begin, end = o.sample_end.value_or(spp);
+  if (begin < 0 || end < begin) {
+    spdlog::error("--samples: expected 0 <= begin <= end, got [{}, {})", begin, end);
+    return std::nullopt;
+  }
+  if (int64_t(end) - begin > kMaxExactSamples) {
+    spdlog::error(
+        "--samples: [{}, {}) is more than {} samples per pixel; split it into ranges "
+        "(--sample-begin/--sample-end --partial) and merge them",
+        begin, end, kMaxExactSamples);
+    return std::nullopt;
+  }
+  if (o.partial && end == begin) {
+    spdlog::error("--partial: the sample range [{}, {}) is empty", begin, begin);
+    return std::nullopt;
+  }
+  return std::pair{begin, end};
+}
+
 }  // namespace
 
 int run_render(const RenderCommandOptions& o) {
   if (!die_with_parent()) return 1;
   RenderOptions ro;
-  try {
+  SceneDescription desc;
+  std::unique_ptr<FrameOutput> output;
+  std::filesystem::path out_path;
+  try {  // every usage error before any work: flags, scene, output path
     if (o.aovs) ro.aovs = parse_aovs(*o.aovs);
-  } catch (const std::exception& e) {
+    desc = load_scene(o.scene);
+    output = std::make_unique<FrameOutput>(o.output, o.partial);
+    out_path = output->path(o.frame ? std::optional<long>(*o.frame) : std::nullopt);
+  } catch (const std::invalid_argument& e) {  // --aov
     spdlog::error("{}", e.what());
     return 2;
-  }
-  SceneDescription desc;
-  try {
-    desc = load_scene(o.scene);
   } catch (const SceneError& e) {
     spdlog::error("{}", e.what());
     return 2;
-  }
-  const std::filesystem::path out_path(o.output);
-  if (out_path.has_parent_path() && !std::filesystem::is_directory(out_path.parent_path())) {
-    spdlog::error("{}: output directory does not exist", out_path.parent_path().string());
+  } catch (const OutputError& e) {
+    spdlog::error("{}", e.what());
     return 2;
   }
   ro.spp = o.spp;
@@ -66,27 +91,12 @@ int run_render(const RenderCommandOptions& o) {
   ro.sample_end = o.sample_end;
   ro.keep_sums = o.partial;
   const int spp = o.spp.value_or(desc.render.spp);
-  if (ro.sample_begin < 0 || ro.sample_end.value_or(spp) < ro.sample_begin) {
-    spdlog::error("--samples: expected 0 <= begin <= end, got [{}, {})", ro.sample_begin,
-                  ro.sample_end.value_or(spp));
-    return 2;
-  }
-  if (int64_t(ro.sample_end.value_or(spp)) - ro.sample_begin > kMaxExactSamples) {
-    spdlog::error(
-        "--samples: [{}, {}) is more than {} samples per pixel; split it into ranges "
-        "(--sample-begin/--sample-end --partial) and merge them",
-        ro.sample_begin, ro.sample_end.value_or(spp), kMaxExactSamples);
-    return 2;
-  }
-  if (o.partial && ro.sample_end.value_or(spp) == ro.sample_begin) {
-    spdlog::error("--partial: the sample range [{}, {}) is empty", ro.sample_begin,
-                  ro.sample_begin);
-    return 2;
-  }
+  const auto range = sample_range(o, spp);
+  if (!range) return 2;
 
   if (!o.quiet)
     spdlog::info("{}: {}x{}, {} spp, {} shapes, {} lights, {} media, {} layers", o.scene,
-                 desc.film.width, desc.film.height, ro.sample_end.value_or(spp) - ro.sample_begin,
+                 desc.film.width, desc.film.height, range->second - range->first,
                  desc.shapes.size(), desc.lights.size(), desc.media.size(), desc.layers.size());
   Progress progress("render");
   if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
@@ -99,7 +109,7 @@ int run_render(const RenderCommandOptions& o) {
       write_partial(make_partial(result.image, std::move(result.sums), spp, out_path.string()),
                     out_path);
     else
-      write_exr(result.image, out_path);
+      output->write(result.image, out_path);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

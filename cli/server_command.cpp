@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "cli/farm_config.h"
 #include "cli/farm_setup.h"
+#include "cli/local_server.h"
 #include "server/server.h"
 
 namespace vesper::cli {
@@ -42,11 +43,14 @@ int run_server(const ServerCommandOptions& o) {
   }
   spdlog::info("tokens for submitters and workers: {}; SIGINT/SIGTERM stops the server",
                (c.data_dir / "tokens.json").string());
+  // Clients on this machine find the token of this data dir (local_server.h).
+  record_local_server(server->url(), c.data_dir);
   std::printf("%s\n", server->url().c_str());
   std::fflush(stdout);
   int sig = 0;
   sigwait(&stop_signals, &sig);
   spdlog::info("server: {} received, stopping", sig == SIGTERM ? "SIGTERM" : "SIGINT");
+  forget_local_server(server->url());
   server->stop();
   return 0;
 }

@@ -127,8 +127,8 @@ int run_submit(const SubmitCommandOptions& o) {
     if (o.priority) r.priority = *o.priority;
     if (o.max_attempts) r.max_attempts = *o.max_attempts;
 
-    FarmClient client(resolve_server_url(settings, o.farm.server),
-                      resolve_token(settings, o.farm.token, TokenRole::Submitter));
+    const std::string url = resolve_server_url(settings, o.farm.server);
+    FarmClient client(url, resolve_token(settings, url, o.farm.token, TokenRole::Submitter));
     const Submitted s = submit_job(client, r, o.dry_run);
     if (o.dry_run) {
       spdlog::info("dry run: '{}' frames {} would make {} tasks; nothing was created", r.name,

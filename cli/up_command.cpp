@@ -77,45 +77,180 @@ CompRecipe recipe_for_frames(const std::filesystem::path& recipe_file, const Fet
   return parse_recipe(doc, recipe_file.parent_path(), recipe_file.string() + " (for vesper up)");
 }
 
-}  // namespace
-
-int run_up(const UpCommandOptions& o) {
-  const auto t0 = std::chrono::steady_clock::now();
+// What `vesper up` will run: settings, the job, and how the cores are shared.
+struct UpPlan {
   FarmSettings settings;
   JobRequest request;
-  try {
-    settings = load_farm_settings(o.config);
-    request = job_request_defaults(settings,
+  int workers = 1;
+  int threads_per_render = 1;
+  std::filesystem::path data_dir, out_dir;
+};
+
+// Throws on bad settings or a missing scene (a usage error).
+UpPlan plan_up(const UpCommandOptions& o) {
+  UpPlan p;
+  p.settings = load_farm_settings(o.config);
+  p.request = job_request_defaults(p.settings,
                                    o.scene ? std::filesystem::path(*o.scene) : find_demo_scene());
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  }
-  if (o.frames) request.frames = *o.frames;
-  if (o.spp) request.spp = *o.spp;
-  if (o.samples_per_task) request.samples_per_task = *o.samples_per_task;
-  const int n_workers = std::max(1, o.workers.value_or(settings.up.workers));
+  if (o.frames) p.request.frames = *o.frames;
+  if (o.spp) p.request.spp = *o.spp;
+  if (o.samples_per_task) p.request.samples_per_task = *o.samples_per_task;
+  p.workers = std::max(1, o.workers.value_or(p.settings.up.workers));
   // The workers share this machine's cores: at most `tasks` renders run at
   // once, so each gets cores / min(workers, tasks) threads. (Splitting a frame
   // over workers on one machine does not make it faster: the same cores, plus
   // each task's own scene setup and a merge — bench/farm_overhead.sh.)
-  int concurrent = n_workers;
+  int concurrent = p.workers;
   try {
-    const int frames = int(parse_frame_range(request.frames).size());
-    const int spp = request.spp > 0 ? request.spp : load_scene(request.scene).render.spp;
-    const int per_frame = request.samples_per_task > 0
-                              ? (spp + request.samples_per_task - 1) / request.samples_per_task
-                              : 1;
-    concurrent = std::clamp(frames * per_frame, 1, n_workers);
+    const JobRequest& r = p.request;
+    const int frames = int(parse_frame_range(r.frames).size());
+    const int spp = r.spp > 0 ? r.spp : load_scene(r.scene).render.spp;
+    const int per_frame =
+        r.samples_per_task > 0 ? (spp + r.samples_per_task - 1) / r.samples_per_task : 1;
+    concurrent = std::clamp(frames * per_frame, 1, p.workers);
   } catch (const std::exception&) {
-    // Bad frames or scene: submit_job reports it properly below.
+    // Bad frames or scene: submit_job reports it properly later.
   }
-  const std::filesystem::path data_dir = expand_user(o.data_dir.value_or(settings.up.data_dir));
-  const std::filesystem::path out_dir = expand_user(o.output_dir.value_or(settings.up.output_dir));
+  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+  p.threads_per_render = std::max(1, cores / concurrent);
+  p.data_dir = expand_user(o.data_dir.value_or(p.settings.up.data_dir));
+  p.out_dir = expand_user(o.output_dir.value_or(p.settings.up.output_dir));
+  return p;
+}
+
+// The workers: threads here, each rendering in child processes. Their info
+// chatter is hidden while they run (it would break the progress bar); their
+// warnings still show.
+class LocalWorkers {
+ public:
+  LocalWorkers(const UpPlan& plan, const Server& server) : level_(spdlog::get_level()) {
+    export_parent_pid();  // renders and merges die with `vesper up` (parent_watch.h)
+    for (int i = 0; i < plan.workers; ++i) {
+      WorkerConfig wc = worker_config(plan.settings);
+      wc.server_url = server.url();
+      wc.token = server.worker_token();
+      wc.name = fmt::format("up-{}", i + 1);
+      wc.cache_dir = plan.data_dir / "worker-cache";
+      wc.idle_backoff_min = 0.05;  // one machine: poll eagerly
+      wc.idle_backoff_max = 0.5;
+      wc.render_threads = plan.threads_per_render;
+      workers_.push_back(std::make_unique<Worker>(wc));
+    }
+    for (auto& w : workers_) g_workers.push_back(w.get());
+    on_stop_signals(on_up_signal);
+    hide_info();
+    for (auto& w : workers_) threads_.emplace_back([&w] { w->run(); });
+  }
+  ~LocalWorkers() { stop(); }
+
+  void hide_info() const { spdlog::set_level(std::max(level_, spdlog::level::warn)); }
+  void show_info() const { spdlog::set_level(level_); }
+  void stop() {
+    if (workers_.empty()) return;
+    for (auto& w : workers_) w->request_stop();
+    for (auto& t : threads_) t.join();
+    threads_.clear();
+    g_workers.clear();
+    // Their keep-alive connections close with them; otherwise the server's stop
+    // waits out the keep-alive timeout.
+    workers_.clear();
+    show_info();
+  }
+
+ private:
+  spdlog::level::level_enum level_;
+  std::vector<std::unique_ptr<Worker>> workers_;
+  std::vector<std::thread> threads_;
+};
+
+// An interrupted earlier `vesper up` may have left unfinished jobs in the data
+// dir: they would take the workers first. Its finished work stays (and is
+// reused where the inputs are the same).
+void cancel_leftover_jobs(FarmClient& client, const std::filesystem::path& data_dir) {
+  const nlohmann::json previous = client.get_json("/jobs");
+  for (const auto& j : previous.at("jobs"))
+    if (!j.at("finished").get<bool>() && j.at("state") != "canceled") {
+      client.post_json("/jobs/" + std::to_string(j.at("id").get<long long>()) + "/cancel",
+                       nlohmann::json::object());
+      spdlog::warn("canceled job {} '{}' left unfinished by an earlier `vesper up` in {}",
+                   j.at("id").get<long long>(), j.at("name").get<std::string>(), data_dir.string());
+    }
+}
+
+// Submits, waits (progress bar), stops the workers, fetches. Returns the exit
+// code: 0, 3 (frames missing), 130 (interrupted); throws on other failures.
+int submit_wait_fetch(const UpPlan& plan, Server& server, LocalWorkers& workers,
+                      FetchedFrames& fetched) {
+  FarmClient client(server.url(), server.submitter_token());
+  cancel_leftover_jobs(client, plan.data_dir);
+  const Submitted s = submit_job(client, plan.request);
+  workers.show_info();
+  spdlog::info("submitted job {} '{}': frames {}, {} tasks", s.id, plan.request.name,
+               plan.request.frames, s.task_count);
+  workers.hide_info();
+  const nlohmann::json final_state = wait_for_job(client, s.id, true, [] { return g_stop.load(); });
+  workers.stop();
+  if (g_stop) {
+    spdlog::warn(
+        "interrupted: {}; kept in {} (`vesper server --data-dir {}` serves it, "
+        "`vesper fetch` gets its frames)",
+        describe_job(client.get_json("/jobs/" + std::to_string(s.id))), plan.data_dir.string(),
+        plan.data_dir.string());
+    return 130;
+  }
+  spdlog::info("{}", describe_job(final_state));
+  fetched = fetch_frames(client, s.id, plan.out_dir);
+  return fetched.missing.empty() ? 0 : 3;
+}
+
+// The scene's recipe (comp.json beside it, or --comp) over the fetched
+// frames; returns the files written. Throws on a failing composite.
+std::vector<std::filesystem::path> composite(const UpCommandOptions& o, const UpPlan& plan,
+                                             const FetchedFrames& fetched) {
+  std::vector<std::filesystem::path> written;
+  const std::filesystem::path recipe =
+      o.comp ? std::filesystem::path(*o.comp) : plan.request.scene.parent_path() / "comp.json";
+  if (o.no_comp || fetched.written.empty() || !std::filesystem::exists(recipe)) return written;
+  const CompRecipe r = recipe_for_frames(recipe, fetched, plan.out_dir, plan.request.name);
+  const CompReport report = run_comp(r);
+  for (const auto& f : report.frames)
+    for (const auto& p : {f.image, f.exr, f.histogram, f.histogram_plot})
+      if (!p.empty()) written.push_back(p);
+  return written;
+}
+
+// Results on stdout (one path a line); where it all is on stderr (not with -q).
+void print_summary(const UpPlan& plan, const FetchedFrames& fetched,
+                   const std::vector<std::filesystem::path>& comp_outputs, double seconds) {
+  for (const auto& p : fetched.written) std::printf("%s\n", p.string().c_str());
+  for (const auto& p : comp_outputs) std::printf("%s\n", p.string().c_str());
+  if (!spdlog::should_log(spdlog::level::info)) return;
+  const int n = plan.workers;
+  std::fprintf(stderr, "\nvesper up: %d worker%s, %.1f s\n", n, n == 1 ? "" : "s", seconds);
+  std::fprintf(stderr, "  frames:     %zu in %s\n", fetched.written.size(),
+               std::filesystem::path(fetched.pattern).parent_path().string().c_str());
+  if (!comp_outputs.empty())
+    std::fprintf(stderr, "  composite:  %zu files (image, EXR, histogram JSON + plot)\n",
+                 comp_outputs.size());
+  std::fprintf(stderr, "  farm data:  %s (jobs.sqlite, blobs/, tokens.json)\n",
+               plan.data_dir.string().c_str());
+}
+
+}  // namespace
+
+int run_up(const UpCommandOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  UpPlan plan;
+  try {
+    plan = plan_up(o);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
 
   // 1. The server, on a free loopback port so `up` never collides with a farm.
-  ServerConfig sc = server_config(settings);
-  sc.data_dir = data_dir;
+  ServerConfig sc = server_config(plan.settings);
+  sc.data_dir = plan.data_dir;
   sc.host = "127.0.0.1";
   sc.port = 0;
   std::unique_ptr<Server> server;
@@ -126,114 +261,32 @@ int run_up(const UpCommandOptions& o) {
     spdlog::error("server: {}", e.what());
     return 1;
   }
-  spdlog::info("farm: {} worker{} on this machine", n_workers, n_workers == 1 ? "" : "s");
+  spdlog::info("farm: {} worker{} on this machine", plan.workers, plan.workers == 1 ? "" : "s");
 
-  // 2. Workers: threads here, each rendering in child processes; cores shared out.
-  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
-  export_parent_pid();  // renders and merges die with `vesper up` (parent_watch.h)
-  std::vector<std::unique_ptr<Worker>> workers;
-  for (int i = 0; i < n_workers; ++i) {
-    WorkerConfig wc = worker_config(settings);
-    wc.server_url = server->url();
-    wc.token = server->worker_token();
-    wc.name = fmt::format("up-{}", i + 1);
-    wc.cache_dir = data_dir / "worker-cache";
-    wc.idle_backoff_min = 0.05;  // one machine: poll eagerly
-    wc.idle_backoff_max = 0.5;
-    wc.render_threads = std::max(1, cores / concurrent);
-    workers.push_back(std::make_unique<Worker>(wc));
-  }
-  for (auto& w : workers) g_workers.push_back(w.get());
-  on_stop_signals(on_up_signal);
-  // Worker chatter would break the progress bar; their warnings still show.
-  const auto level = spdlog::get_level();
-  spdlog::set_level(std::max(level, spdlog::level::warn));
-  std::vector<std::thread> threads;
-  for (auto& w : workers) threads.emplace_back([&w] { w->run(); });
-  auto stop_all = [&] {
-    for (auto& w : workers) w->request_stop();
-    for (auto& t : threads) t.join();
-    threads.clear();
-    g_workers.clear();
-    // Their keep-alive connections close with them; otherwise the server's stop
-    // waits out the keep-alive timeout.
-    workers.clear();
-    spdlog::set_level(level);
-  };
-
-  // 3. Submit, wait, fetch.
+  // 2. Workers, 3. submit, wait, fetch.
   int rc = 0;
   FetchedFrames fetched;
-  nlohmann::json final_state;
   try {
-    FarmClient client(server->url(), server->submitter_token());
-    // An interrupted earlier `vesper up` may have left unfinished jobs here:
-    // they would take the workers first. Its finished work stays (and is
-    // reused where the inputs are the same).
-    const nlohmann::json previous = client.get_json("/jobs");
-    for (const auto& j : previous.at("jobs"))
-      if (!j.at("finished").get<bool>() && j.at("state") != "canceled") {
-        client.post_json("/jobs/" + std::to_string(j.at("id").get<long long>()) + "/cancel",
-                         nlohmann::json::object());
-        spdlog::warn("canceled job {} '{}' left unfinished by an earlier `vesper up` in {}",
-                     j.at("id").get<long long>(), j.at("name").get<std::string>(),
-                     data_dir.string());
-      }
-    const Submitted s = submit_job(client, request);
-    spdlog::set_level(level);
-    spdlog::info("submitted job {} '{}': frames {}, {} tasks", s.id, request.name, request.frames,
-                 s.task_count);
-    spdlog::set_level(std::max(level, spdlog::level::warn));
-    final_state = wait_for_job(client, s.id, true, [] { return g_stop.load(); });
-    stop_all();
-    if (g_stop) {
-      spdlog::warn(
-          "interrupted: {}; kept in {} (`vesper server --data-dir {}` serves it, "
-          "`vesper fetch` gets its frames)",
-          describe_job(client.get_json("/jobs/" + std::to_string(s.id))), data_dir.string(),
-          data_dir.string());
-      return 130;
-    }
-    spdlog::info("{}", describe_job(final_state));
-    fetched = fetch_frames(client, s.id, out_dir);
-    if (!fetched.missing.empty()) rc = 3;
+    LocalWorkers workers(plan, *server);
+    rc = submit_wait_fetch(plan, *server, workers, fetched);
+    if (rc == 130) return rc;
   } catch (const std::exception& e) {
-    if (!g_workers.empty()) stop_all();
     spdlog::error("{}", e.what());
     return dynamic_cast<const SceneError*>(&e) ? 2 : 1;
   }
   server->stop();
 
-  // 4. Composite with the scene's recipe (comp.json beside it), if any.
+  // 4. Composite with the scene's recipe, if any.
   std::vector<std::filesystem::path> comp_outputs;
-  const std::filesystem::path recipe =
-      o.comp ? std::filesystem::path(*o.comp) : request.scene.parent_path() / "comp.json";
-  if (!o.no_comp && !fetched.written.empty() && std::filesystem::exists(recipe)) {
-    try {
-      const CompRecipe r = recipe_for_frames(recipe, fetched, out_dir, request.name);
-      const CompReport report = run_comp(r);
-      for (const auto& f : report.frames)
-        for (const auto& p : {f.image, f.exr, f.histogram, f.histogram_plot})
-          if (!p.empty()) comp_outputs.push_back(p);
-    } catch (const std::exception& e) {
-      spdlog::error("composite: {}", e.what());
-      rc = 1;
-    }
+  try {
+    comp_outputs = composite(o, plan, fetched);
+  } catch (const std::exception& e) {
+    spdlog::error("composite: {}", e.what());
+    rc = 1;
   }
-
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::fprintf(stderr, "\nvesper up: %d worker%s, %.1f s\n", n_workers, n_workers == 1 ? "" : "s",
-               seconds);
-  std::fprintf(stderr, "  frames:     %zu in %s\n", fetched.written.size(),
-               std::filesystem::path(fetched.pattern).parent_path().string().c_str());
-  for (const auto& p : fetched.written) std::printf("%s\n", p.string().c_str());
-  for (const auto& p : comp_outputs) std::printf("%s\n", p.string().c_str());
-  if (!comp_outputs.empty())
-    std::fprintf(stderr, "  composite:  %zu files (image, EXR, histogram JSON + plot)\n",
-                 comp_outputs.size());
-  std::fprintf(stderr, "  farm data:  %s (jobs.sqlite, blobs/, tokens.json)\n",
-               data_dir.string().c_str());
+  print_summary(plan, fetched, comp_outputs, seconds);
   return rc;
 }
 

@@ -33,7 +33,7 @@ int run_worker(const WorkerCommandOptions& o) {
     const FarmSettings settings = load_farm_settings(o.farm.config);
     c = worker_config(settings);
     c.server_url = resolve_server_url(settings, o.farm.server);
-    c.token = resolve_token(settings, o.farm.token, TokenRole::Worker);
+    c.token = resolve_token(settings, c.server_url, o.farm.token, TokenRole::Worker);
     if (o.cache_dir) c.cache_dir = expand_user(*o.cache_dir);
     if (o.threads) c.render_threads = *o.threads;
   } catch (const std::exception& e) {

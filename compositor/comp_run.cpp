@@ -72,6 +72,21 @@ void write_text(const fs::path& path, const std::string& text, const fs::path& f
   if (!out) throw CompError(final_path.string() + ": cannot write the file");
 }
 
+LayeredImage read_input(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw CompError(path.string() + ": no such file");
+  try {
+    LayeredImage img = read_exr(path);
+    if (img.width <= 0 || img.height <= 0 || img.channels.empty())
+      throw CompError(path.string() + ": an empty image");
+    return img;
+  } catch (const ImageIoError& e) {
+    throw CompError(path.string() + ": not a readable EXR (" + e.what() + ")");
+  }
+}
+
+}  // namespace
+
 void write_display_image(const RgbaImage& display, const CompOutputs& o, const fs::path& tmp,
                          const fs::path& final_path) {
   const std::vector<uint16_t> q = quantize_rgb(display, o.bit_depth);
@@ -99,18 +114,7 @@ void write_display_image(const RgbaImage& display, const CompOutputs& o, const f
   if (!ok || !closed) throw CompError(final_path.string() + ": cannot write: " + out->geterror());
 }
 
-LayeredImage read_input(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw CompError(path.string() + ": no such file");
-  try {
-    LayeredImage img = read_exr(path);
-    if (img.width <= 0 || img.height <= 0 || img.channels.empty())
-      throw CompError(path.string() + ": an empty image");
-    return img;
-  } catch (const ImageIoError& e) {
-    throw CompError(path.string() + ": not a readable EXR (" + e.what() + ")");
-  }
-}
+namespace {
 
 fs::path at_frame(const fs::path& p, std::optional<long> frame) {
   return frame ? frame_path(p, *frame) : p;

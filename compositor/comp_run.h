@@ -38,6 +38,13 @@ CompReport run_comp(const CompRecipe& recipe, const CompProgress& progress = {})
 // premultiplied over). Throws CompError if the sizes differ.
 void blend_layer(RgbaImage& canvas, const RgbaImage& layer, const LayerOp& op);
 
+// Writes a display-referred image as run_comp does (PNG, JPEG or TIFF by
+// outputs.image_format, outputs.bit_depth bits) to `file`; a CompError names
+// `final_path` (the name `file` will be renamed to).
+void write_display_image(const RgbaImage& display, const CompOutputs& outputs,
+                         const std::filesystem::path& file,
+                         const std::filesystem::path& final_path);
+
 // Float [0,1] to 8- or 16-bit with rounding; NaN and negatives to 0, >1 clamps.
 // Returns channels R,G,B (interleaved, `bits` = 8: uint8 bytes, 16: uint16 values).
 std::vector<uint16_t> quantize_rgb(const RgbaImage& display, int bits);

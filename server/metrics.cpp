@@ -32,4 +32,16 @@ std::string prometheus_text(const MetricsSnapshot& m) {
   return out;
 }
 
+void ServerCounters::response(int status) {
+  std::lock_guard lock(mutex_);
+  ++http_codes_[status];
+}
+
+void ServerCounters::fill(MetricsSnapshot& m) const {
+  m.leases_granted = leases_granted_.load();
+  m.tasks_reused = tasks_reused_.load();
+  std::lock_guard lock(mutex_);
+  m.http_requests_by_code = http_codes_;
+}
+
 }  // namespace vesper

@@ -1,7 +1,9 @@
 #pragma once
 // The farm's metrics in Prometheus text exposition format (version 0.0.4).
+#include <atomic>
 #include <cstdint>
 #include <map>
+#include <mutex>
 #include <string>
 
 namespace vesper {
@@ -16,5 +18,23 @@ struct MetricsSnapshot {
 };
 
 std::string prometheus_text(const MetricsSnapshot& m);
+
+// The counters since the server started. Thread safe.
+class ServerCounters {
+ public:
+  void lease_granted() { ++leases_granted_; }
+  void tasks_reused(int n) { tasks_reused_ += uint64_t(n); }
+  // Counted before the response is written, so a client that got an answer
+  // sees it in the next /metrics.
+  void response(int status);
+  // Fills the counter fields of `m`.
+  void fill(MetricsSnapshot& m) const;
+
+ private:
+  std::atomic<uint64_t> leases_granted_{0};
+  std::atomic<uint64_t> tasks_reused_{0};
+  mutable std::mutex mutex_;
+  std::map<int, uint64_t> http_codes_;
+};
 
 }  // namespace vesper

@@ -6,7 +6,7 @@
 // Data dir layout: tokens.json (0600), jobs.sqlite (+WAL), workers.json,
 // blobs/ab/cdef... (+ blobs/tmp/), merge-tmp/ (merges in flight).
 //
-// This header does not include cpp-httplib; server.cpp is the only file that
+// This header does not include cpp-httplib; http_api.cpp is the only file that
 // does.
 #include <cstddef>
 #include <filesystem>

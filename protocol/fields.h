@@ -1,0 +1,76 @@
+#pragma once
+// The JSON keys of the farm API, written once. The message types
+// (worker_messages.h, job_messages.h) convert with them, and the server's
+// request validation names them in its error paths ("/lease_id").
+namespace vesper::protocol::field {
+
+// Errors: {"error": "...", "path": "/json/pointer"}
+inline constexpr const char* kError = "error";
+inline constexpr const char* kPath = "path";
+
+// Shared by several messages.
+inline constexpr const char* kId = "id";
+inline constexpr const char* kName = "name";
+inline constexpr const char* kState = "state";
+inline constexpr const char* kFrame = "frame";
+inline constexpr const char* kOk = "ok";
+
+// Jobs
+inline constexpr const char* kScene = "scene";
+inline constexpr const char* kFrames = "frames";
+inline constexpr const char* kSpp = "spp";
+inline constexpr const char* kSamplesPerTask = "samples_per_task";
+inline constexpr const char* kPriority = "priority";
+inline constexpr const char* kMaxAttempts = "max_attempts";
+inline constexpr const char* kAssets = "assets";
+inline constexpr const char* kBlob = "blob";
+inline constexpr const char* kTaskCount = "task_count";
+inline constexpr const char* kFrameCount = "frame_count";
+inline constexpr const char* kDryRun = "dry_run";
+inline constexpr const char* kCounts = "counts";
+inline constexpr const char* kQueued = "queued";
+inline constexpr const char* kLeased = "leased";
+inline constexpr const char* kDone = "done";
+inline constexpr const char* kFailed = "failed";
+inline constexpr const char* kCanceled = "canceled";
+inline constexpr const char* kPaused = "paused";
+inline constexpr const char* kTotal = "total";
+inline constexpr const char* kFinished = "finished";
+inline constexpr const char* kJobs = "jobs";
+inline constexpr const char* kJob = "job";
+inline constexpr const char* kTasks = "tasks";
+inline constexpr const char* kBlockedWorkers = "blocked_workers";
+inline constexpr const char* kRequeued = "requeued";
+
+// Tasks
+inline constexpr const char* kJobId = "job_id";
+inline constexpr const char* kSampleBegin = "sample_begin";
+inline constexpr const char* kSampleEnd = "sample_end";
+inline constexpr const char* kAttempts = "attempts";
+inline constexpr const char* kAttempt = "attempt";
+inline constexpr const char* kWorker = "worker";
+inline constexpr const char* kResult = "result";
+inline constexpr const char* kHasLog = "has_log";
+inline constexpr const char* kProgress = "progress";
+inline constexpr const char* kReusedFrom = "reused_from";
+
+// Workers and leases
+inline constexpr const char* kWorkers = "workers";
+inline constexpr const char* kWorkerId = "worker_id";
+inline constexpr const char* kRegistered = "registered";
+inline constexpr const char* kLastSeen = "last_seen";
+inline constexpr const char* kLeases = "leases";
+inline constexpr const char* kNow = "now";
+inline constexpr const char* kRenderer = "renderer";
+inline constexpr const char* kLeaseId = "lease_id";
+inline constexpr const char* kExpiry = "expiry";
+inline constexpr const char* kLeaseSeconds = "lease_seconds";
+inline constexpr const char* kTask = "task";
+inline constexpr const char* kAnswer = "answer";
+inline constexpr const char* kLog = "log";
+
+// Blobs
+inline constexpr const char* kSha256 = "sha256";
+inline constexpr const char* kSize = "size";
+
+}  // namespace vesper::protocol::field

@@ -1,0 +1,142 @@
+#pragma once
+// The job API's messages (server/README.md, "Jobs"; docs/api/openapi.yaml):
+// submit, job summaries and details, tasks, actions, frames, the worker list
+// and blob uploads. Each converts to and from its JSON body with nlohmann's
+// to_json/from_json; from_json throws nlohmann::json::exception on a missing
+// key or wrong type (it reads what to_json writes). Optional fields are left
+// out of the JSON when unset.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "protocol/worker_messages.h"
+
+namespace vesper::protocol {
+
+// POST /jobs. The defaults are the server's.
+struct SubmitRequest {
+  std::string name = "job";
+  std::string scene;  // SHA-256 of the uploaded scene blob
+  // "1-100", "1-100x5", "1,5,9" (combinations too), or a list of frames.
+  std::variant<std::string, std::vector<int>> frames;
+  int spp = 16;
+  int samples_per_task = 0;  // 0: one task per frame
+  int priority = 50;         // higher first
+  int max_attempts = 3;
+  std::vector<AssetRef> assets;  // left out of the JSON when empty
+};
+
+// 201 answer to POST /jobs.
+struct SubmitResponse {
+  int64_t id = 0;
+  int64_t task_count = 0;
+};
+
+// 200 answer to POST /jobs?dry_run=1 ({"dry_run": true, ...}).
+struct DryRunResponse {
+  std::string name;
+  int64_t frame_count = 0;
+  int64_t task_count = 0;
+  bool dry_run = true;
+};
+
+struct JobCounts {
+  int queued = 0, leased = 0, done = 0, failed = 0, canceled = 0, paused = 0;
+};
+
+// A job in GET /jobs and at the top of GET /jobs/{id}.
+struct JobSummary {
+  int64_t id = 0;
+  std::string name;
+  int priority = 0;
+  std::string state;  // "active", "paused", "canceled"
+  JobCounts counts;
+  int total = 0;
+  bool finished = false;  // nothing queued, leased or paused
+};
+
+struct JobList {
+  std::vector<JobSummary> jobs;
+};
+
+// A task in GET /jobs/{id}.
+struct TaskInfo {
+  int64_t id = 0;
+  int64_t job_id = 0;
+  int frame = 0;
+  int sample_begin = 0, sample_end = 0;
+  std::string state;  // "queued", "leased", "done", "failed", "canceled", "paused"
+  int attempts = 0;
+  std::string worker;  // current or last lease holder
+  std::string result;  // result blob, when done
+  bool has_log = false;
+  std::optional<double> progress;  // leased tasks whose heartbeat the server has seen
+  int64_t reused_from = 0;         // 0: rendered (left out of the JSON)
+};
+
+// GET /jobs/{id}: the summary's fields plus these.
+struct JobDetail {
+  JobSummary summary;
+  std::vector<TaskInfo> tasks;
+  std::vector<std::string> blocked_workers;  // worker ids on the job's blocklist
+};
+
+// POST /jobs/{id}/cancel|pause|resume|retry-failed
+struct JobActionResponse {
+  JobSummary job;
+  std::optional<int> requeued;  // retry-failed only
+};
+
+// A frame in GET /jobs/{id}/frames.
+enum class FrameState { Pending, Ready, Failed };
+struct FrameInfo {
+  int frame = 0;
+  FrameState state = FrameState::Pending;
+  int tasks = 0, done = 0;
+  std::string blob;   // Ready: the output blob (left out when empty)
+  std::string error;  // Failed: why (left out when empty)
+};
+
+struct FrameList {
+  std::vector<FrameInfo> frames;
+};
+
+// A worker in GET /workers.
+struct WorkerInfo {
+  std::string worker_id;
+  std::string name;
+  double registered = 0;  // the server's clock, seconds
+  double last_seen = 0;
+  int leases = 0;  // live leases this server process knows of
+};
+
+struct WorkerList {
+  std::vector<WorkerInfo> workers;
+  double now = 0;  // the server's clock, to compare last_seen with
+};
+
+// Answer to PUT /blobs/{sha256} (201 stored, 200 already there).
+struct BlobStored {
+  std::string sha256;
+  int64_t size = 0;
+};
+
+VESPER_JSON_CONVERSIONS(SubmitRequest);
+VESPER_JSON_CONVERSIONS(SubmitResponse);
+VESPER_JSON_CONVERSIONS(DryRunResponse);
+VESPER_JSON_CONVERSIONS(JobCounts);
+VESPER_JSON_CONVERSIONS(JobSummary);
+VESPER_JSON_CONVERSIONS(JobList);
+VESPER_JSON_CONVERSIONS(TaskInfo);
+VESPER_JSON_CONVERSIONS(JobDetail);
+VESPER_JSON_CONVERSIONS(JobActionResponse);
+VESPER_JSON_CONVERSIONS(FrameState);
+VESPER_JSON_CONVERSIONS(FrameInfo);
+VESPER_JSON_CONVERSIONS(FrameList);
+VESPER_JSON_CONVERSIONS(WorkerInfo);
+VESPER_JSON_CONVERSIONS(WorkerList);
+VESPER_JSON_CONVERSIONS(BlobStored);
+
+}  // namespace vesper::protocol

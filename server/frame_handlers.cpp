@@ -1,0 +1,84 @@
+#include "server/handlers.h"
+
+#include <nlohmann/json.hpp>
+
+#include "protocol/job_messages.h"
+#include "server/api_error.h"
+#include "server/blob_store.h"
+#include "server/frame_merger.h"
+#include "server/locked_store.h"
+
+namespace vesper {
+namespace {
+
+using protocol::FrameState;
+
+protocol::FrameInfo frame_info(const FrameStatus& f, const std::map<int, std::string>& failures) {
+  protocol::FrameInfo out{f.frame, FrameState::Pending, f.tasks, f.done, {}, {}};
+  if (!f.output.empty() || (f.complete() && f.tasks == 1)) {
+    out.state = FrameState::Ready;
+    out.blob = f.output.empty() ? f.results[0] : f.output;
+  } else if (f.failed + f.canceled > 0) {
+    out.state = FrameState::Failed;
+    out.error =
+        std::to_string(f.failed) + " task(s) failed, " + std::to_string(f.canceled) + " canceled";
+  } else if (auto it = failures.find(f.frame); f.complete() && it != failures.end()) {
+    out.state = FrameState::Failed;
+    out.error = it->second;
+  }
+  return out;
+}
+
+// The HTTP status of a frame that is not ready.
+int status_of(FrameMerger::State s) {
+  switch (s) {
+    case FrameMerger::State::Pending:
+    case FrameMerger::State::TasksFailed:
+      return 409;
+    case FrameMerger::State::Unavailable:
+    case FrameMerger::State::Stopping:
+      return 503;
+    case FrameMerger::State::Ready:
+    case FrameMerger::State::MergeFailed:
+      break;
+  }
+  return 500;
+}
+
+ApiResponse list(const FrameHandlerDeps& d, const ApiRequest& req) {
+  const int64_t id = id_param(req, 0);
+  const std::vector<FrameStatus> frames = d.store.with([&](JobStore& s) {
+    require_job(s, id);
+    return s.frames(id);
+  });
+  const std::map<int, std::string> failures = d.merger.failures(id);
+  protocol::FrameList out;
+  for (const FrameStatus& f : frames) out.frames.push_back(frame_info(f, failures));
+  return json_response(200, out);
+}
+
+ApiResponse get(const FrameHandlerDeps& d, const ApiRequest& req) {
+  const int64_t id = id_param(req, 0);
+  const int frame = frame_param(req, 1);
+  d.store.with([&](JobStore& s) { require_job(s, id); });
+  const auto out = d.merger.output(id, frame, /*retry=*/true);
+  if (!out) throw ApiError(404, "job " + std::to_string(id) + " has no frame " + req.params[1]);
+  if (out->state != FrameMerger::State::Ready) throw ApiError(status_of(out->state), out->message);
+  const auto file = d.blobs.file(out->blob);
+  const auto size = d.blobs.size(out->blob);
+  if (!file || !size)
+    throw ApiError(500, "the output blob " + out->blob + " of " +
+                            FrameMerger::frame_name(id, frame) + " is missing from the blob store");
+  ApiResponse res = file_response(*file, *size, "image/x-exr");
+  res.headers.emplace_back(std::string(protocol::kBlobHeader), out->blob);
+  return res;
+}
+
+}  // namespace
+
+void add_frame_handlers(HandlerTable& table, const FrameHandlerDeps& d) {
+  table[protocol::Endpoint::ListFrames] = [d](const ApiRequest& r) { return list(d, r); };
+  table[protocol::Endpoint::GetFrame] = [d](const ApiRequest& r) { return get(d, r); };
+}
+
+}  // namespace vesper

@@ -1,0 +1,66 @@
+#pragma once
+// The handlers, one group per resource, each given only the parts of the
+// server it needs. A group adds its endpoints to a HandlerTable; its .cpp
+// holds the handlers.
+#include <functional>
+
+#include "server/http_exchange.h"
+
+namespace vesper {
+
+class BlobStore;
+class FrameMerger;
+class LeaseTracker;
+class LockedStore;
+class ServerClock;
+class ServerCounters;
+class WorkerRegistry;
+
+// Jobs (submitter token): submit, list, one job with its tasks,
+// cancel/pause/resume/retry-failed, a task's log. job_handlers.cpp
+struct JobHandlerDeps {
+  LockedStore& store;
+  const BlobStore& blobs;
+  const LeaseTracker& leases;  // progress of leased tasks
+  ServerClock& clock;
+};
+void add_job_handlers(HandlerTable& table, const JobHandlerDeps& deps);
+
+// Workers (register, list) and the lease protocol (lease, heartbeat,
+// complete, fail) with its fencing: a call on a stale lease is a 409 that
+// never touches committed state. worker_handlers.cpp
+struct WorkerHandlerDeps {
+  LockedStore& store;
+  const BlobStore& blobs;
+  WorkerRegistry& workers;
+  LeaseTracker& leases;
+  ServerCounters& counters;
+  ServerClock& clock;
+  double lease_seconds;
+  // Tasks were completed: a frame of several tasks may be ready to merge.
+  std::function<void()> tasks_completed;
+};
+void add_worker_handlers(HandlerTable& table, const WorkerHandlerDeps& deps);
+
+// Frames (submitter token): every frame's state, a frame's EXR (merged by
+// the FrameMerger when the frame was split). frame_handlers.cpp
+struct FrameHandlerDeps {
+  LockedStore& store;
+  const BlobStore& blobs;
+  FrameMerger& merger;
+};
+void add_frame_handlers(HandlerTable& table, const FrameHandlerDeps& deps);
+
+// Blobs (either token): PUT stores a body under its verified SHA-256, GET
+// streams it (HEAD answers from the same handler). blob_handlers.cpp
+void add_blob_handlers(HandlerTable& table, BlobStore& blobs);
+
+// Operations: /healthz (no token), /metrics (Prometheus text). ops_handlers.cpp
+struct OpsHandlerDeps {
+  LockedStore& store;
+  const WorkerRegistry& workers;
+  const ServerCounters& counters;
+};
+void add_ops_handlers(HandlerTable& table, const OpsHandlerDeps& deps);
+
+}  // namespace vesper

@@ -1,0 +1,143 @@
+#include "server/handlers.h"
+
+#include <spdlog/spdlog.h>
+
+#include <nlohmann/json.hpp>
+
+#include "protocol/fields.h"
+#include "protocol/job_messages.h"
+#include "server/api_error.h"
+#include "server/blob_store.h"
+#include "server/lease_tracker.h"
+#include "server/locked_store.h"
+#include "server/requests.h"
+#include "server/server_clock.h"
+
+namespace vesper {
+namespace {
+
+using protocol::Endpoint;
+using protocol::JobAction;
+
+protocol::JobSummary to_wire(const JobSummary& j) {
+  return {j.id,
+          j.name,
+          j.priority,
+          to_string(j.state),
+          {j.queued, j.leased, j.done, j.failed, j.canceled, j.paused},
+          j.total(),
+          j.finished()};
+}
+
+protocol::TaskInfo to_wire(const Task& t) {
+  return {t.id,       t.job_id, t.frame,  t.sample_begin, t.sample_end, to_string(t.state),
+          t.attempts, t.worker, t.result, !t.log.empty(), std::nullopt, t.reused_from};
+}
+
+// "no blob X...: upload it first", at `path` of the request body.
+[[noreturn]] void missing_blob(const std::string& blob, const std::string& what,
+                               const std::string& path) {
+  throw ApiError(400,
+                 "no blob " + blob + what + ": upload " + (what.empty() ? "the scene" : "it") +
+                     " first (PUT " + protocol::api(protocol::paths::kBlob) + ")",
+                 path);
+}
+
+ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
+  const JobSpec spec = read_job_request(req.body);
+  namespace f = protocol::field;
+  if (!d.blobs.exists(spec.scene)) missing_blob(spec.scene, "", std::string("/") + f::kScene);
+  for (size_t i = 0; i < spec.assets.size(); ++i)
+    if (!d.blobs.exists(spec.assets[i].blob))
+      missing_blob(spec.assets[i].blob, " for asset '" + spec.assets[i].name + "'",
+                   std::string("/") + f::kAssets + "/" + std::to_string(i) + "/" + f::kBlob);
+  const int64_t n = task_count(spec);
+  const std::string dry = req.query_value(std::string(protocol::kDryRunParam));
+  if (dry == "1" || dry == "true")
+    return json_response(200, protocol::DryRunResponse{spec.name, int64_t(spec.frames.size()), n});
+  const int64_t id = d.store.with([&](JobStore& s) { return s.submit(spec, d.clock.now()); });
+  spdlog::info("job {} '{}' submitted: {} frames, {} tasks", id, spec.name, spec.frames.size(), n);
+  ApiResponse res = json_response(201, protocol::SubmitResponse{id, n});
+  res.headers.emplace_back("Location", protocol::api(protocol::job_path(id)));
+  return res;
+}
+
+ApiResponse list(const JobHandlerDeps& d, const ApiRequest&) {
+  protocol::JobList out;
+  d.store.with([&](JobStore& s) {
+    for (const auto& j : s.jobs()) out.jobs.push_back(to_wire(j));
+  });
+  return json_response(200, out);
+}
+
+ApiResponse get(const JobHandlerDeps& d, const ApiRequest& req) {
+  const int64_t id = id_param(req, 0);
+  protocol::JobDetail out;
+  std::vector<Task> tasks;
+  d.store.with([&](JobStore& s) {
+    out.summary = to_wire(require_job(s, id));
+    tasks = s.tasks(id);
+    out.blocked_workers = s.blocked_workers(id);
+  });
+  const std::map<int64_t, double> progress = d.leases.progress_by_task();
+  for (const Task& t : tasks) {
+    protocol::TaskInfo ti = to_wire(t);
+    if (auto it = progress.find(t.id); t.state == TaskState::Leased && it != progress.end())
+      ti.progress = it->second;
+    out.tasks.push_back(std::move(ti));
+  }
+  return json_response(200, out);
+}
+
+ApiResponse act(const JobHandlerDeps& d, const ApiRequest& req, JobAction action) {
+  const int64_t id = id_param(req, 0);
+  protocol::JobActionResponse out;
+  d.store.with([&](JobStore& s) {
+    require_job(s, id);
+    switch (action) {
+      case JobAction::Cancel:
+        s.cancel(id);
+        break;
+      case JobAction::Pause:
+        s.pause(id);
+        break;
+      case JobAction::Resume:
+        s.resume(id);
+        break;
+      case JobAction::RetryFailed:
+        out.requeued = s.retry_failed(id);
+        break;
+    }
+    out.job = to_wire(require_job(s, id));
+  });
+  spdlog::info("job {}: {}", id, protocol::action_name(action));
+  return json_response(200, out);
+}
+
+ApiResponse task_log(const JobHandlerDeps& d, const ApiRequest& req) {
+  const int64_t job = id_param(req, 0);
+  const int64_t task = id_param(req, 1);
+  const std::vector<Task> tasks = d.store.with([&](JobStore& s) {
+    require_job(s, job);
+    return s.tasks(job);
+  });
+  for (const Task& t : tasks)
+    if (t.id == task) return text_response(t.log, "text/plain; charset=utf-8");
+  throw ApiError(404, "job " + std::to_string(job) + " has no task " + std::to_string(task));
+}
+
+}  // namespace
+
+void add_job_handlers(HandlerTable& table, const JobHandlerDeps& d) {
+  table[Endpoint::SubmitJob] = [d](const ApiRequest& r) { return submit(d, r); };
+  table[Endpoint::ListJobs] = [d](const ApiRequest& r) { return list(d, r); };
+  table[Endpoint::GetJob] = [d](const ApiRequest& r) { return get(d, r); };
+  for (auto [endpoint, action] : {std::pair{Endpoint::CancelJob, JobAction::Cancel},
+                                  std::pair{Endpoint::PauseJob, JobAction::Pause},
+                                  std::pair{Endpoint::ResumeJob, JobAction::Resume},
+                                  std::pair{Endpoint::RetryFailed, JobAction::RetryFailed}})
+    table[endpoint] = [d, action](const ApiRequest& r) { return act(d, r, action); };
+  table[Endpoint::TaskLog] = [d](const ApiRequest& r) { return task_log(d, r); };
+}
+
+}  // namespace vesper

@@ -1,0 +1,199 @@
+#include "server/requests.h"
+
+#include <algorithm>
+#include <climits>
+#include <set>
+
+#include "common/json_parse.h"
+#include "common/json_reader.h"
+#include "common/sha256.h"
+#include "jobs/frame_range.h"
+#include "protocol/fields.h"
+#include "server/api_error.h"
+
+namespace vesper {
+namespace {
+
+namespace f = protocol::field;
+
+constexpr const char* kBody = "request body";
+
+// Parses `body` and reads its root with `read`; a JsonError becomes ApiError
+// 400 at its JSON path.
+template <class Read>
+auto read_body(const std::string& body, Read&& read) {
+  try {
+    const nlohmann::json j = parse_json(body, kBody);
+    JsonReader root(j, kBody, "");
+    return read(root);
+  } catch (const JsonError& e) {
+    // The reader names the whole body "/"; the API leaves `path` out for it.
+    const std::string path = e.json_path() == "/" ? "" : e.json_path();
+    throw ApiError(400, e.json_path().empty() ? e.what() : e.message(), path);
+  }
+}
+
+// A required key, named at its own path when missing (the API's error paths
+// name the field: "/frames").
+JsonReader required(JsonReader& o, std::string_view key) {
+  if (!o.has(key)) o.fail_key(key, "missing required key '" + std::string(key) + "'");
+  return o.child(key);
+}
+
+std::string optional_string(JsonReader& o, std::string_view key) {
+  const auto c = o.optional_child(key);
+  return c ? c->as_string(/*allow_empty=*/true) : std::string();
+}
+
+// A SHA-256 spelling at `key` ("expected the SHA-256 of <what> ...").
+std::string sha256_at(JsonReader& o, std::string_view key, const std::string& what) {
+  const JsonReader v = required(o, key);
+  if (!v.json().is_string() || !is_sha256_hex(v.json().get<std::string>()))
+    v.fail("expected the SHA-256 of " + what + " (64 lower-case hex digits), got " +
+           describe_json(v.json()));
+  return v.json().get<std::string>();
+}
+
+// Control characters of a name shown in a message become '?'.
+std::string shown(const std::string& name) {
+  std::string s = name.substr(0, 80);
+  for (char& c : s)
+    if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  return s;
+}
+
+Asset read_asset(JsonReader a, std::set<std::string>& names, std::set<std::string>& dirs) {
+  a.allow_keys({f::kName, f::kBlob});
+  Asset asset;
+  asset.name = required(a, f::kName).as_string(/*allow_empty=*/true);
+  if (const std::string why = asset_name_problem(asset.name); !why.empty())
+    a.fail_key(f::kName, "asset name '" + shown(asset.name) + "' " + why);
+  if (asset.name == "scene.json")
+    a.fail_key(f::kName, "asset name 'scene.json' is reserved for the scene itself");
+  if (!names.insert(asset.name).second)
+    a.fail_key(f::kName, "duplicate asset name '" + shown(asset.name) + "'");
+  for (size_t slash = asset.name.find('/'); slash != std::string::npos;
+       slash = asset.name.find('/', slash + 1))
+    dirs.insert(asset.name.substr(0, slash));
+  asset.blob = sha256_at(a, f::kBlob, "an uploaded blob");
+  return asset;
+}
+
+std::vector<Asset> read_assets(const JsonReader& assets) {
+  if (!assets.json().is_array())
+    assets.fail("expected an array of {\"name\", \"blob\"} objects, got " +
+                describe_json(assets.json()));
+  if (assets.size() > size_t(kMaxAssetsPerJob))
+    assets.fail("more than " + std::to_string(kMaxAssetsPerJob) + " assets");
+  std::vector<Asset> out;
+  std::set<std::string> names, dirs;  // dirs: every directory some name needs
+  for (size_t i = 0; i < assets.size(); ++i)
+    out.push_back(read_asset(assets.element(i), names, dirs));
+  // A name cannot be a file and a directory at once ("a" and "a/b").
+  for (size_t i = 0; i < out.size(); ++i)
+    if (dirs.count(out[i].name))
+      assets.element(i).fail_key(f::kName, "asset name '" + out[i].name.substr(0, 80) +
+                                               "' is also the directory of another asset");
+  return out;
+}
+
+// "1-100x5" or [1, 5, 9]: sorted, without repeats.
+std::vector<int> read_frames(const JsonReader& frames) {
+  if (frames.json().is_string()) {
+    try {
+      return parse_frame_range(frames.json().get<std::string>());
+    } catch (const FrameRangeError& e) {
+      frames.fail(std::string("bad frame range: ") + e.what());
+    }
+  }
+  if (!frames.json().is_array())
+    frames.fail(
+        "expected a frame range string (\"1-100\", \"1-100x5\", \"1,5,9\") or an array of "
+        "integers, got " +
+        describe_json(frames.json()));
+  if (frames.size() == 0) frames.fail("expected at least one frame");
+  std::vector<int> out;
+  for (size_t i = 0; i < frames.size(); ++i)
+    out.push_back(int(frames.element(i).as_integer(INT32_MIN, INT32_MAX)));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+JobSpec read_job(JsonReader& o) {
+  o.allow_keys({f::kName, f::kScene, f::kFrames, f::kSpp, f::kSamplesPerTask, f::kPriority,
+                f::kMaxAttempts, f::kAssets});
+  JobSpec spec;
+  const auto name = o.optional_child(f::kName);
+  spec.name = name ? name->as_string(/*allow_empty=*/true) : "job";
+  if (spec.name.size() > 256) o.fail_key(f::kName, "name longer than 256 characters");
+  spec.scene = sha256_at(o, f::kScene, "an uploaded scene blob");
+  spec.frames = read_frames(required(o, f::kFrames));
+  spec.spp = int(o.integer(f::kSpp, spec.spp, 1, 1 << 20));
+  spec.samples_per_task = int(o.integer(f::kSamplesPerTask, 0, 0, 1 << 20));
+  spec.priority = int(o.integer(f::kPriority, spec.priority, -1000000, 1000000));
+  spec.max_attempts = int(o.integer(f::kMaxAttempts, spec.max_attempts, 1, 100));
+  if (const auto assets = o.optional_child(f::kAssets)) spec.assets = read_assets(*assets);
+  const int64_t n = task_count(spec);
+  if (n > kMaxTasksPerJob)
+    o.fail_key(spec.samples_per_task > 0 ? f::kSamplesPerTask : f::kFrames,
+               "the job splits into " + std::to_string(n) + " tasks, more than " +
+                   std::to_string(kMaxTasksPerJob) +
+                   " (fewer frames or a larger samples_per_task)");
+  return spec;
+}
+
+}  // namespace
+
+int64_t task_count(const JobSpec& spec) {
+  const int64_t split = spec.samples_per_task > 0 ? spec.samples_per_task : spec.spp;
+  return int64_t(spec.frames.size()) * ((spec.spp + split - 1) / split);
+}
+
+JobSpec read_job_request(const std::string& body) { return read_body(body, read_job); }
+
+protocol::RegisterRequest read_register_request(const std::string& body) {
+  return read_body(body, [](JsonReader& o) {
+    o.allow_keys({f::kName});
+    protocol::RegisterRequest r{required(o, f::kName).as_string()};
+    if (r.name.size() > 128) o.fail_key(f::kName, "name longer than 128 characters");
+    return r;
+  });
+}
+
+protocol::LeaseRequest read_lease_request(const std::string& body) {
+  return read_body(body, [](JsonReader& o) {
+    o.allow_keys({f::kWorkerId, f::kRenderer});
+    protocol::LeaseRequest r{required(o, f::kWorkerId).as_string(),
+                             optional_string(o, f::kRenderer)};
+    // The renderer's identity (sha256 of its executable); empty: not given.
+    if (!r.renderer.empty() && !is_sha256_hex(r.renderer))
+      o.fail_key(f::kRenderer, "expected the renderer's sha256 (64 lower-case hex digits)");
+    return r;
+  });
+}
+
+protocol::HeartbeatRequest read_heartbeat_request(const std::string& body) {
+  return read_body(body, [](JsonReader& o) {
+    o.allow_keys({f::kLeaseId, f::kProgress});
+    return protocol::HeartbeatRequest{required(o, f::kLeaseId).as_string(),
+                                      o.number(f::kProgress, 0, Range::closed(0, 1))};
+  });
+}
+
+protocol::CompleteRequest read_complete_request(const std::string& body) {
+  return read_body(body, [](JsonReader& o) {
+    o.allow_keys({f::kLeaseId, f::kResult});
+    return protocol::CompleteRequest{required(o, f::kLeaseId).as_string(),
+                                     sha256_at(o, f::kResult, "the uploaded result blob")};
+  });
+}
+
+protocol::FailRequest read_fail_request(const std::string& body) {
+  return read_body(body, [](JsonReader& o) {
+    o.allow_keys({f::kLeaseId, f::kLog});
+    return protocol::FailRequest{required(o, f::kLeaseId).as_string(), optional_string(o, f::kLog)};
+  });
+}
+
+}  // namespace vesper

@@ -1,0 +1,40 @@
+#pragma once
+// Reading request bodies into typed requests with the common JSON reader
+// (common/json_reader.h). Every error is an ApiError 400 naming the JSON path
+// (RFC 6901 pointer such as "/frames"; a missing key is named at its own
+// path) and what was expected there; unknown keys are rejected, so a typo
+// ("sample_per_task") is an error rather than a silently ignored default.
+// Keys come from protocol/fields.h.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "jobs/job.h"
+#include "protocol/worker_messages.h"
+
+namespace vesper {
+
+// A submitted job: {"name", "scene", "frames", "spp", "samples_per_task",
+// "priority", "max_attempts", "assets"}. `frames` is a frame-range string
+// ("1-10x2", "1,5,9") or an array of integers; `scene` must be a SHA-256 (the
+// existence of the blob is checked by the server). Limits: spp <= 1<<20, at
+// most kMaxTasksPerJob tasks, kMaxAssetsPerJob assets. "assets": [{"name":
+// "assets/cube.obj", "blob": "<sha256>"}, ...]: names are checked by
+// asset_name_problem (jobs/job.h), unique, not "scene.json", and no name is
+// the directory of another; blobs are SHA-256 spellings (their existence is
+// checked by the server). Errors name "/assets/3/name" etc.
+constexpr int64_t kMaxTasksPerJob = 100000;
+constexpr int64_t kMaxAssetsPerJob = 10000;
+JobSpec read_job_request(const std::string& body);
+// Tasks `spec` splits into (what the store will create).
+int64_t task_count(const JobSpec& spec);
+
+// The worker protocol. Names are at most 128 characters; `renderer` and
+// `result` are SHA-256 spellings; progress is in [0, 1].
+protocol::RegisterRequest read_register_request(const std::string& body);
+protocol::LeaseRequest read_lease_request(const std::string& body);
+protocol::HeartbeatRequest read_heartbeat_request(const std::string& body);
+protocol::CompleteRequest read_complete_request(const std::string& body);
+protocol::FailRequest read_fail_request(const std::string& body);
+
+}  // namespace vesper

@@ -1,0 +1,131 @@
+#include "server/handlers.h"
+
+#include <spdlog/spdlog.h>
+
+#include <nlohmann/json.hpp>
+
+#include "protocol/fields.h"
+#include "protocol/job_messages.h"
+#include "protocol/worker_messages.h"
+#include "server/api_error.h"
+#include "server/blob_store.h"
+#include "server/lease_tracker.h"
+#include "server/locked_store.h"
+#include "server/metrics.h"
+#include "server/requests.h"
+#include "server/server_clock.h"
+#include "server/worker_registry.h"
+
+namespace vesper {
+namespace {
+
+using protocol::Endpoint;
+namespace f = protocol::field;
+
+constexpr size_t kMaxLogTail = 64 * 1024;
+
+[[noreturn]] void stale(const std::string& lease_id) {
+  throw ApiError(409,
+                 "stale lease '" + lease_id.substr(0, 80) +
+                     "': it expired, was re-leased, or its task was canceled; drop the task",
+                 std::string("/") + f::kLeaseId);
+}
+
+ApiResponse ok() { return json_response(200, protocol::OkResponse{}); }
+
+ApiResponse register_worker(const WorkerHandlerDeps& d, const ApiRequest& req) {
+  const auto r = read_register_request(req.body);
+  const std::string id = d.workers.add(r.name, d.clock.now());
+  spdlog::info("worker '{}' registered as {}", r.name, id);
+  return json_response(200, protocol::RegisterResponse{id});
+}
+
+ApiResponse list(const WorkerHandlerDeps& d, const ApiRequest&) {
+  std::map<std::string, int> leases = d.leases.leases_by_worker();
+  protocol::WorkerList out;
+  for (const WorkerInfo& w : d.workers.list())
+    out.workers.push_back({w.id, w.name, w.registered, w.last_seen, leases[w.id]});
+  out.now = d.clock.now();
+  return json_response(200, out);
+}
+
+ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
+  const auto r = read_lease_request(req.body);
+  const double t = d.clock.now();
+  if (!d.workers.touch(r.worker_id, t))
+    throw ApiError(404,
+                   "unknown worker '" + r.worker_id.substr(0, 80) + "': register first (POST " +
+                       protocol::api(protocol::paths::kWorkerRegister) + ")",
+                   std::string("/") + f::kWorkerId);
+  int reused = 0;
+  // The renderer's identity (sha256 of its executable): identical tasks done
+  // by the same renderer are not rendered again.
+  const std::optional<Lease> l =
+      d.store.with([&](JobStore& s) { return s.lease(r.worker_id, t, r.renderer, &reused); });
+  if (reused > 0) {
+    d.counters.tasks_reused(reused);
+    d.tasks_completed();  // reused tasks may have finished frames of several tasks
+  }
+  if (!l) {
+    ApiResponse none;
+    none.status = 204;
+    return none;
+  }
+  d.counters.lease_granted();
+  d.leases.granted(l->lease_id, l->task.id, r.worker_id, l->expiry);
+  protocol::LeaseResponse out{l->lease_id, l->expiry, d.lease_seconds, l->scene, l->spp, {}, {}};
+  for (const Asset& a : l->assets) out.assets.push_back({a.name, a.blob});
+  const Task& task = l->task;
+  out.task = {task.id,           task.job_id,     task.frame,
+              task.sample_begin, task.sample_end, task.attempts + 1};
+  return json_response(200, out);
+}
+
+ApiResponse heartbeat(const WorkerHandlerDeps& d, const ApiRequest& req) {
+  const auto r = read_heartbeat_request(req.body);
+  const double t = d.clock.now();
+  const HeartbeatAnswer a = d.store.with([&](JobStore& s) { return s.heartbeat(r.lease_id, t); });
+  d.leases.note(r.lease_id, t, a != HeartbeatAnswer::KeepRunning, r.progress);
+  if (a == HeartbeatAnswer::StaleLease) stale(r.lease_id);
+  return json_response(200, protocol::HeartbeatResponse{a == HeartbeatAnswer::KeepRunning
+                                                            ? protocol::HeartbeatAnswer::KeepRunning
+                                                            : protocol::HeartbeatAnswer::Stop});
+}
+
+ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
+  const auto r = read_complete_request(req.body);
+  if (!d.blobs.exists(r.result))
+    throw ApiError(400,
+                   "no blob " + r.result + ": upload the result first (PUT " +
+                       protocol::api(protocol::paths::kBlob) + ")",
+                   std::string("/") + f::kResult);
+  const double t = d.clock.now();
+  const bool done = d.store.with([&](JobStore& s) { return s.complete(r.lease_id, r.result, t); });
+  d.leases.note(r.lease_id, t, true);
+  if (!done) stale(r.lease_id);
+  d.tasks_completed();  // the task may have finished a frame of several tasks
+  return ok();
+}
+
+ApiResponse fail(const WorkerHandlerDeps& d, const ApiRequest& req) {
+  auto r = read_fail_request(req.body);
+  if (r.log.size() > kMaxLogTail) r.log = r.log.substr(r.log.size() - kMaxLogTail);
+  const double t = d.clock.now();
+  const bool failed = d.store.with([&](JobStore& s) { return s.fail(r.lease_id, r.log, t); });
+  d.leases.note(r.lease_id, t, true);
+  if (!failed) stale(r.lease_id);
+  return ok();
+}
+
+}  // namespace
+
+void add_worker_handlers(HandlerTable& table, const WorkerHandlerDeps& d) {
+  table[Endpoint::RegisterWorker] = [d](const ApiRequest& r) { return register_worker(d, r); };
+  table[Endpoint::ListWorkers] = [d](const ApiRequest& r) { return list(d, r); };
+  table[Endpoint::Lease] = [d](const ApiRequest& r) { return lease(d, r); };
+  table[Endpoint::Heartbeat] = [d](const ApiRequest& r) { return heartbeat(d, r); };
+  table[Endpoint::Complete] = [d](const ApiRequest& r) { return complete(d, r); };
+  table[Endpoint::Fail] = [d](const ApiRequest& r) { return fail(d, r); };
+}
+
+}  // namespace vesper

@@ -1,0 +1,142 @@
+// The protocol's paths and messages: paths fill in as clients need them, and
+// every message writes the JSON the server has always written (same keys,
+// same optional keys left out) and reads it back.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "protocol/error_body.h"
+#include "protocol/job_messages.h"
+#include "protocol/paths.h"
+#include "protocol/worker_messages.h"
+
+namespace vesper::protocol {
+namespace {
+
+using nlohmann::json;
+
+template <class T>
+T round_trip(const T& m) {
+  return json::parse(json(m).dump()).get<T>();
+}
+
+TEST(PathsTest, TemplatesFillInForClients) {
+  EXPECT_EQ(api(paths::kLease), "/api/v1/lease");
+  EXPECT_EQ(job_path(7), "/jobs/7");
+  EXPECT_EQ(job_action_path(7, JobAction::RetryFailed), "/jobs/7/retry-failed");
+  EXPECT_EQ(action_name(JobAction::Cancel), "cancel");
+  EXPECT_EQ(task_log_path(7, 12), "/jobs/7/tasks/12/log");
+  EXPECT_EQ(frames_path(7), "/jobs/7/frames");
+  EXPECT_EQ(frame_path(7, -3), "/jobs/7/frames/-3");
+  EXPECT_EQ(api(blob_path("ab")), "/api/v1/blobs/ab");
+  EXPECT_THROW(expand(paths::kTaskLog, {"1"}), std::invalid_argument);
+  EXPECT_THROW(expand(paths::kJobs, {"1"}), std::invalid_argument);
+}
+
+TEST(WorkerMessagesTest, LeaseRequestLeavesOutAnEmptyRenderer) {
+  EXPECT_EQ(json(LeaseRequest{"w1", ""}).dump(), R"({"worker_id":"w1"})");
+  EXPECT_EQ(json(LeaseRequest{"w1", "ff"}).dump(), R"({"renderer":"ff","worker_id":"w1"})");
+  EXPECT_EQ(round_trip(LeaseRequest{"w1", "ff"}).renderer, "ff");
+}
+
+TEST(WorkerMessagesTest, LeaseResponseIsTheServersAnswer) {
+  LeaseResponse l;
+  l.lease_id = "L";
+  l.expiry = 1010.5;
+  l.lease_seconds = 10;
+  l.scene = "S";
+  l.spp = 16;
+  l.assets = {{"a/b.obj", "B"}};
+  l.task = {3, 1, 5, 0, 8, 1};
+  EXPECT_EQ(json(l), json::parse(R"({"lease_id": "L", "expiry": 1010.5, "lease_seconds": 10.0,
+                "scene": "S", "spp": 16, "assets": [{"name": "a/b.obj", "blob": "B"}],
+                "task": {"id": 3, "job_id": 1, "frame": 5, "sample_begin": 0,
+                         "sample_end": 8, "attempt": 1}})"));
+  const LeaseResponse back = round_trip(l);
+  EXPECT_EQ(back.assets, l.assets);
+  EXPECT_EQ(back.task.sample_end, 8);
+  EXPECT_EQ(back.lease_seconds, 10);
+}
+
+TEST(WorkerMessagesTest, SmallMessagesKeepTheirKeys) {
+  EXPECT_EQ(json(RegisterRequest{"host"}).dump(), R"({"name":"host"})");
+  EXPECT_EQ(json(RegisterResponse{"w"}).dump(), R"({"worker_id":"w"})");
+  EXPECT_EQ(json(HeartbeatRequest{"L", 0.5}).dump(), R"({"lease_id":"L","progress":0.5})");
+  EXPECT_EQ(json(HeartbeatResponse{HeartbeatAnswer::KeepRunning}).dump(),
+            R"({"answer":"keep_running"})");
+  EXPECT_EQ(json(HeartbeatResponse{HeartbeatAnswer::Stop}).dump(), R"({"answer":"stop"})");
+  EXPECT_EQ(round_trip(HeartbeatResponse{HeartbeatAnswer::Stop}).answer, HeartbeatAnswer::Stop);
+  EXPECT_THROW(json::parse(R"({"answer":"maybe"})").get<HeartbeatResponse>(), json::exception);
+  EXPECT_EQ(json(CompleteRequest{"L", "R"}).dump(), R"({"lease_id":"L","result":"R"})");
+  EXPECT_EQ(json(FailRequest{"L", "log"}).dump(), R"({"lease_id":"L","log":"log"})");
+  EXPECT_EQ(json(OkResponse{}).dump(), R"({"ok":true})");
+  EXPECT_THROW(json::parse(R"({"lease_id":"L"})").get<CompleteRequest>(), json::exception);
+}
+
+TEST(JobMessagesTest, SubmitRequestCarriesFramesAsStringOrList) {
+  SubmitRequest s;
+  s.scene = "S";
+  s.frames = std::string("1-3");
+  EXPECT_EQ(json(s), json::parse(R"({"name": "job", "scene": "S", "frames": "1-3", "spp": 16,
+                "samples_per_task": 0, "priority": 50, "max_attempts": 3})"));
+  s.frames = std::vector<int>{1, 5};
+  s.assets = {{"x", "B"}};
+  const json j = s;
+  EXPECT_EQ(j.at("frames"), json::parse("[1, 5]"));
+  EXPECT_EQ(j.at("assets").size(), 1u);
+  const SubmitRequest back = round_trip(s);
+  EXPECT_EQ(std::get<std::vector<int>>(back.frames), (std::vector<int>{1, 5}));
+  EXPECT_THROW(json::parse(R"({"scene": "S", "frames": "2"})").get<SubmitRequest>(),
+               json::exception);
+  EXPECT_THROW(json::parse(R"([1])").get<SubmitRequest>(), json::exception);
+}
+
+TEST(JobMessagesTest, JobDetailIsTheSummaryWithTasks) {
+  JobDetail d;
+  d.summary = {1, "n", 50, "active", {1, 1, 0, 0, 0, 0}, 2, false};
+  TaskInfo leased{2, 1, 1, 0, 16, "leased", 1, "w", "", false, 0.25, 0};
+  TaskInfo reused{3, 1, 2, 0, 16, "done", 0, "", "R", false, std::nullopt, 9};
+  d.tasks = {leased, reused};
+  d.blocked_workers = {"w2"};
+  const json j = d;
+  EXPECT_EQ(j.at("counts").at("queued"), 1);
+  EXPECT_EQ(j.at("total"), 2);
+  EXPECT_EQ(j.at("tasks").at(0).at("progress"), 0.25);
+  EXPECT_FALSE(j.at("tasks").at(0).contains("reused_from"));
+  EXPECT_FALSE(j.at("tasks").at(1).contains("progress"));
+  EXPECT_EQ(j.at("tasks").at(1).at("reused_from"), 9);
+  EXPECT_EQ(j.at("blocked_workers"), json::parse(R"(["w2"])"));
+  const JobDetail back = round_trip(d);
+  EXPECT_EQ(back.summary.name, "n");
+  EXPECT_EQ(back.tasks.at(0).progress, 0.25);
+  EXPECT_EQ(back.tasks.at(1).reused_from, 9);
+}
+
+TEST(JobMessagesTest, FramesWorkersActionsBlobsAndErrors) {
+  FrameList frames{{{1, FrameState::Ready, 1, 1, "B", ""}, {2, FrameState::Failed, 2, 1, "", "x"}}};
+  EXPECT_EQ(json(frames), json::parse(R"({"frames": [
+      {"frame": 1, "state": "ready", "tasks": 1, "done": 1, "blob": "B"},
+      {"frame": 2, "state": "failed", "tasks": 2, "done": 1, "error": "x"}]})"));
+  EXPECT_EQ(round_trip(frames).frames.at(1).state, FrameState::Failed);
+
+  WorkerList workers{{{"w", "host", 1.0, 2.0, 1}}, 3.0};
+  EXPECT_EQ(json(workers), json::parse(R"({"workers": [{"worker_id": "w", "name": "host",
+      "registered": 1.0, "last_seen": 2.0, "leases": 1}], "now": 3.0})"));
+
+  JobActionResponse a;
+  a.job.id = 4;
+  EXPECT_FALSE(json(a).contains("requeued"));
+  a.requeued = 2;
+  EXPECT_EQ(round_trip(a).requeued, 2);
+
+  EXPECT_EQ(json(SubmitResponse{4, 6}).dump(), R"({"id":4,"task_count":6})");
+  EXPECT_EQ(json(DryRunResponse{"n", 3, 6}).dump(),
+            R"({"dry_run":true,"frame_count":3,"name":"n","task_count":6})");
+  EXPECT_EQ(json(BlobStored{"S", 5}).dump(), R"({"sha256":"S","size":5})");
+  EXPECT_EQ(json(ErrorBody{"bad", ""}).dump(), R"({"error":"bad"})");
+  EXPECT_EQ(json(ErrorBody{"bad", "/frames"}).dump(), R"({"error":"bad","path":"/frames"})");
+  EXPECT_EQ(round_trip(ErrorBody{"bad", "/x"}).path, "/x");
+}
+
+}  // namespace
+}  // namespace vesper::protocol
