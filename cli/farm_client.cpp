@@ -6,24 +6,25 @@
 
 #include "cli/local_server.h"
 #include "common/sha256.h"
+#include "protocol/error_body.h"
+#include "protocol/paths.h"
 #include "worker/http_client.h"
 
 namespace vesper::cli {
 namespace {
 
-constexpr const char* kApi = "/api/v1";
-
 std::string describe(const std::string& what, const worker_detail::HttpResponse& r) {
   if (r.status == 0) return what + ": cannot reach the server: " + r.error;
   std::string msg = what + ": HTTP " + std::to_string(r.status);
-  const auto doc = nlohmann::json::parse(r.body, nullptr, false);
-  if (doc.is_object() && doc.contains("error") && doc["error"].is_string()) {
-    msg += ": " + doc["error"].get<std::string>();
-    if (doc.contains("path") && doc["path"].is_string())
-      msg += " (at " + doc["path"].get<std::string>() + ")";
-  } else if (!r.body.empty()) {
-    msg += ": " + r.body.substr(0, 300);
+  protocol::ErrorBody error;
+  try {
+    error = nlohmann::json::parse(r.body).get<protocol::ErrorBody>();
+  } catch (const nlohmann::json::exception&) {
+    // Not the server's error body (a proxy's page?): show its start.
+    return r.body.empty() ? msg : msg + ": " + r.body.substr(0, 300);
   }
+  msg += ": " + error.error;
+  if (!error.path.empty()) msg += " (at " + error.path + ")";
   return msg;
 }
 
@@ -75,15 +76,15 @@ FarmClient::FarmClient(std::string url, std::string token)
 FarmClient::~FarmClient() = default;
 
 nlohmann::json FarmClient::get_json(const std::string& path) {
-  return parse_answer("GET " + path, http_->get(kApi + path));
+  return parse_answer("GET " + path, http_->get(protocol::api(path)));
 }
 
 nlohmann::json FarmClient::post_json(const std::string& path, const nlohmann::json& body) {
-  return parse_answer("POST " + path, http_->post_json(kApi + path, body.dump()));
+  return parse_answer("POST " + path, http_->post_json(protocol::api(path), body.dump()));
 }
 
 std::string FarmClient::get_text(const std::string& path) {
-  const auto r = http_->get(kApi + path);
+  const auto r = http_->get(protocol::api(path));
   if (!r.ok()) throw FarmClientError(describe("GET " + path, r));
   return r.body;
 }
@@ -92,15 +93,16 @@ std::string FarmClient::put_blob(const std::filesystem::path& file) {
   const auto sha = sha256_file(file);
   if (!sha) throw FarmClientError(file.string() + ": cannot read");
   // Content-addressed: a blob the server has is not sent again.
-  if (http_->head(std::string(kApi) + "/blobs/" + *sha).status == 200) return *sha;
-  const auto r = http_->put_file(std::string(kApi) + "/blobs/" + *sha, file);
+  const std::string blob = protocol::api(protocol::blob_path(*sha));
+  if (http_->head(blob).status == 200) return *sha;
+  const auto r = http_->put_file(blob, file);
   if (!r.ok()) throw FarmClientError(describe("upload of " + file.string(), r));
   return *sha;
 }
 
 void FarmClient::download(const std::string& path, const std::filesystem::path& file) {
   const std::filesystem::path part = file.string() + ".part";
-  auto r = http_->get_to_file(kApi + path, part);
+  auto r = http_->get_to_file(protocol::api(path), part);
   if (!r.ok()) {
     std::ifstream in(part);  // the error answer went to the file
     r.body.assign(std::istreambuf_iterator<char>(in), {});

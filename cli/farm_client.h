@@ -42,7 +42,9 @@ class FarmClient {
   FarmClient& operator=(const FarmClient&) = delete;
 
   const std::string& url() const { return url_; }
-  // Paths are under /api/v1 (give "/jobs", not "/api/v1/jobs"). Non-2xx
+  // Paths are relative to protocol::kApiPrefix (give protocol::job_path(7),
+  // "/jobs/7", not "/api/v1/jobs/7"); the answers' shapes are protocol/'s
+  // messages (`get_json(path).get<protocol::JobDetail>()`). Non-2xx
   // answers throw FarmClientError "<METHOD> <path>: <status>: <server's error> (at <path>)".
   nlohmann::json get_json(const std::string& path);
   nlohmann::json post_json(const std::string& path, const nlohmann::json& body);

@@ -10,6 +10,8 @@
 #include "cli/fetch.h"
 #include "cli/job_watch.h"
 #include "common/sha256.h"
+#include "protocol/job_messages.h"
+#include "protocol/paths.h"
 
 namespace vesper::cli {
 namespace {
@@ -31,49 +33,46 @@ int with_client(const JobCommandOptions& o, Body&& body) {
   }
 }
 
-std::string job_path(const JobCommandOptions& o) { return "/jobs/" + std::to_string(*o.job); }
+const std::string kWorkersPath(protocol::paths::kWorkers);
 
 // worker id -> name, for tables people read.
 std::map<std::string, std::string> worker_names(FarmClient& c) {
   std::map<std::string, std::string> names;
-  const nlohmann::json all = c.get_json("/workers");  // not a temporary in the range-for
-  for (const auto& w : all.at("workers"))
-    names[w.at("worker_id").get<std::string>()] = w.at("name").get<std::string>();
+  for (const auto& w : c.get_json(kWorkersPath).get<protocol::WorkerList>().workers)
+    names[w.worker_id] = w.name;
   return names;
 }
 
 }  // namespace
 
 FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesystem::path& dir) {
-  const std::string base = "/jobs/" + std::to_string(job);
-  const nlohmann::json j = client.get_json(base);
+  const std::string name =
+      client.get_json(protocol::job_path(job)).get<protocol::JobSummary>().name;
   // Frames whose tasks are all done may still be merging on the server: give
   // the merges time (a merge reads and writes the frame once; seconds).
-  nlohmann::json frames;
+  protocol::FrameList frames;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
   for (;;) {
-    frames = client.get_json(base + "/frames");
+    frames = client.get_json(protocol::frames_path(job)).get<protocol::FrameList>();
     bool merging = false;
-    for (const auto& f : frames.at("frames"))
-      merging = merging || (f.at("state") == "pending" && f.at("done") == f.at("tasks"));
+    for (const protocol::FrameInfo& f : frames.frames)
+      merging = merging || (f.state == protocol::FrameState::Pending && f.done == f.tasks);
     if (!merging || std::chrono::steady_clock::now() > deadline) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   std::filesystem::create_directories(dir);
   FetchedFrames out;
-  const std::string name = j.at("name").get<std::string>();
   out.pattern = (dir / (name + ".####.exr")).string();
-  for (const auto& f : frames.at("frames")) {
-    const int frame = f.at("frame").get<int>();
-    if (f.at("state") != "ready") {
-      out.missing.push_back(frame);
+  for (const protocol::FrameInfo& f : frames.frames) {
+    if (f.state != protocol::FrameState::Ready) {
+      out.missing.push_back(f.frame);
       continue;
     }
-    const std::filesystem::path file = dir / fmt::format("{}.{:04d}.exr", name, frame);
-    client.download(base + "/frames/" + std::to_string(frame), file);
-    if (f.contains("blob")) {
+    const std::filesystem::path file = dir / fmt::format("{}.{:04d}.exr", name, f.frame);
+    client.download(protocol::frame_path(job, f.frame), file);
+    if (!f.blob.empty()) {
       const auto sha = sha256_file(file);
-      if (!sha || *sha != f.at("blob").get<std::string>()) {
+      if (!sha || *sha != f.blob) {
         std::filesystem::remove(file);
         throw FarmClientError(file.string() + ": downloaded frame does not match its hash");
       }
@@ -86,102 +85,107 @@ FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesys
 int run_status(const JobCommandOptions& o) {
   return with_client(o, [&](FarmClient& c) {
     if (!o.job) {
-      const nlohmann::json all = c.get_json("/jobs");
-      if (o.json) {
+      const nlohmann::json all = c.get_json(std::string(protocol::paths::kJobs));
+      if (o.json) {  // as the server said it
         std::printf("%s\n", all.dump(2).c_str());
         return 0;
       }
-      if (all.at("jobs").empty()) std::printf("no jobs\n");
-      for (const auto& j : all.at("jobs")) std::printf("%s\n", describe_job(j).c_str());
+      const auto jobs = all.get<protocol::JobList>().jobs;
+      if (jobs.empty()) std::printf("no jobs\n");
+      for (const auto& j : jobs) std::printf("%s\n", describe_job(j).c_str());
       return 0;
     }
-    const nlohmann::json j = c.get_json(job_path(o));
+    const nlohmann::json answer = c.get_json(protocol::job_path(*o.job));
     if (o.json) {
-      std::printf("%s\n", j.dump(2).c_str());
+      std::printf("%s\n", answer.dump(2).c_str());
       return 0;
     }
+    const auto j = answer.get<protocol::JobDetail>();
     std::printf("%s\n", describe_job(j).c_str());
     const auto names = worker_names(c);
     auto name_of = [&](const std::string& id) {
       const auto it = names.find(id);
       return it == names.end() ? id : it->second;
     };
-    for (const auto& b : j.value("blocked_workers", nlohmann::json::array()))
-      std::printf("blocked for this job: %s\n", name_of(b.get<std::string>()).c_str());
+    for (const auto& b : j.blocked_workers)
+      std::printf("blocked for this job: %s\n", name_of(b).c_str());
     std::printf("%8s %6s %13s %9s %8s  %s\n", "task", "frame", "samples", "state", "attempts",
                 "worker");
-    for (const auto& t : j.at("tasks")) {
-      std::string state = t.at("state").get<std::string>();
-      if (t.contains("progress"))
-        state += fmt::format(" {:.0f}%", 100.0 * t.at("progress").get<double>());
-      std::printf(
-          "%8lld %6d %13s %9s %8d  %s\n", t.at("id").get<long long>(), t.at("frame").get<int>(),
-          fmt::format("[{}, {})", t.at("sample_begin").get<int>(), t.at("sample_end").get<int>())
-              .c_str(),
-          state.c_str(), t.at("attempts").get<int>(),
-          t.contains("reused_from")
-              ? fmt::format("(reused task {})", t.at("reused_from").get<long long>()).c_str()
-              : name_of(t.at("worker").get<std::string>()).c_str());
+    for (const protocol::TaskInfo& t : j.tasks) {
+      std::string state = t.state;
+      if (t.progress) state += fmt::format(" {:.0f}%", 100.0 * *t.progress);
+      std::printf("%8lld %6d %13s %9s %8d  %s\n", static_cast<long long>(t.id), t.frame,
+                  fmt::format("[{}, {})", t.sample_begin, t.sample_end).c_str(), state.c_str(),
+                  t.attempts,
+                  t.reused_from ? fmt::format("(reused task {})", t.reused_from).c_str()
+                                : name_of(t.worker).c_str());
     }
     return 0;
   });
 }
 
 namespace {
-int job_action(const JobCommandOptions& o, const char* action, const char* done) {
+protocol::JobActionResponse post_action(FarmClient& c, int64_t job, protocol::JobAction action) {
+  return c.post_json(protocol::job_action_path(job, action), nlohmann::json::object())
+      .get<protocol::JobActionResponse>();
+}
+
+int job_action(const JobCommandOptions& o, protocol::JobAction action, const char* done) {
   return with_client(o, [&](FarmClient& c) {
-    const nlohmann::json a = c.post_json(job_path(o) + "/" + action, nlohmann::json::object());
-    spdlog::info("{}: {}", done, describe_job(a.at("job")));
+    spdlog::info("{}: {}", done, describe_job(post_action(c, *o.job, action).job));
     return 0;
   });
 }
 
 }  // namespace
 
-int run_cancel(const JobCommandOptions& o) { return job_action(o, "cancel", "canceled"); }
-int run_pause(const JobCommandOptions& o) { return job_action(o, "pause", "paused"); }
-int run_resume(const JobCommandOptions& o) { return job_action(o, "resume", "resumed"); }
+int run_cancel(const JobCommandOptions& o) {
+  return job_action(o, protocol::JobAction::Cancel, "canceled");
+}
+int run_pause(const JobCommandOptions& o) {
+  return job_action(o, protocol::JobAction::Pause, "paused");
+}
+int run_resume(const JobCommandOptions& o) {
+  return job_action(o, protocol::JobAction::Resume, "resumed");
+}
 
 int run_workers(const JobCommandOptions& o) {
   return with_client(o, [&](FarmClient& c) {
-    const nlohmann::json all = c.get_json("/workers");
+    const nlohmann::json answer = c.get_json(kWorkersPath);
     if (o.json) {
-      std::printf("%s\n", all.dump(2).c_str());
+      std::printf("%s\n", answer.dump(2).c_str());
       return 0;
     }
-    const double now = all.value("now", 0.0);
-    if (all.at("workers").empty())
+    const auto all = answer.get<protocol::WorkerList>();
+    if (all.workers.empty())
       std::printf("no workers\n");
     else
       std::printf("%-24s %-34s %12s %7s\n", "name", "worker id", "last seen", "leases");
-    for (const auto& w : all.at("workers"))
-      std::printf("%-24s %-34s %10.0fs ago %7s\n", w.at("name").get<std::string>().c_str(),
-                  w.at("worker_id").get<std::string>().c_str(),
-                  now - w.at("last_seen").get<double>(), w.at("leases").dump().c_str());
+    for (const protocol::WorkerInfo& w : all.workers)
+      std::printf("%-24s %-34s %10.0fs ago %7d\n", w.name.c_str(), w.worker_id.c_str(),
+                  all.now - w.last_seen, w.leases);
     return 0;
   });
 }
 
 int run_retry(const JobCommandOptions& o) {
   return with_client(o, [&](FarmClient& c) {
-    const nlohmann::json a = c.post_json(job_path(o) + "/retry-failed", nlohmann::json::object());
-    spdlog::info("requeued {} failed tasks: {}", a.value("requeued", 0), describe_job(a.at("job")));
+    const auto a = post_action(c, *o.job, protocol::JobAction::RetryFailed);
+    spdlog::info("requeued {} failed tasks: {}", a.requeued.value_or(0), describe_job(a.job));
     return 0;
   });
 }
 
 int run_logs(const JobCommandOptions& o) {
   return with_client(o, [&](FarmClient& c) {
-    const nlohmann::json j = c.get_json(job_path(o));
+    const auto j = c.get_json(protocol::job_path(*o.job)).get<protocol::JobDetail>();
     int shown = 0;
-    for (const auto& t : j.at("tasks")) {
-      if (!t.value("has_log", false)) continue;
-      const long long id = t.at("id").get<long long>();
-      std::printf("=== task %lld (frame %d, samples [%d, %d)), %s after %d attempts ===\n%s\n", id,
-                  t.at("frame").get<int>(), t.at("sample_begin").get<int>(),
-                  t.at("sample_end").get<int>(), t.at("state").get<std::string>().c_str(),
-                  t.at("attempts").get<int>(),
-                  c.get_text(job_path(o) + "/tasks/" + std::to_string(id) + "/log").c_str());
+    for (const protocol::TaskInfo& t : j.tasks) {
+      if (!t.has_log) continue;
+      std::printf("=== task %lld (frame %d, samples [%d, %d)), %s after %d attempts ===\n%s\n",
+                  static_cast<long long>(t.id), t.frame, t.sample_begin, t.sample_end,
+                  t.state.c_str(), t.attempts,
+                  c.get_text(protocol::task_log_path(*o.job, t.id)).c_str());
       ++shown;
     }
     if (shown == 0) spdlog::info("job {}: no task has a failure log", *o.job);

@@ -8,20 +8,28 @@
 #include <thread>
 
 #include "cli/progress.h"
+#include "protocol/paths.h"
 
 namespace vesper::cli {
 
-std::string describe_job(const nlohmann::json& j) {
-  const auto& c = j.at("counts");
-  std::string s = "job " + std::to_string(j.at("id").get<long long>()) + " '" +
-                  j.at("name").get<std::string>() + "': " + j.at("state").get<std::string>() +
-                  ", " + std::to_string(c.at("done").get<int>()) + "/" +
-                  std::to_string(j.at("total").get<int>()) + " tasks done";
-  for (const char* k : {"leased", "queued", "failed", "paused", "canceled"})
-    if (c.at(k).get<int>() > 0) s += ", " + std::to_string(c.at(k).get<int>()) + " " + k;
-  int reused = 0;
-  for (const auto& t : j.value("tasks", nlohmann::json::array()))
-    reused += t.contains("reused_from");
+std::string describe_job(const protocol::JobSummary& j) {
+  const protocol::JobCounts& c = j.counts;
+  std::string s = "job " + std::to_string(j.id) + " '" + j.name + "': " + j.state + ", " +
+                  std::to_string(c.done) + "/" + std::to_string(j.total) + " tasks done";
+  const std::pair<int, const char*> others[] = {{c.leased, "leased"},
+                                                {c.queued, "queued"},
+                                                {c.failed, "failed"},
+                                                {c.paused, "paused"},
+                                                {c.canceled, "canceled"}};
+  for (const auto& [count, what] : others)
+    if (count > 0) s += ", " + std::to_string(count) + " " + what;
+  return s;
+}
+
+std::string describe_job(const protocol::JobDetail& j) {
+  std::string s = describe_job(j.summary);
+  const auto reused = std::count_if(j.tasks.begin(), j.tasks.end(),
+                                    [](const protocol::TaskInfo& t) { return t.reused_from != 0; });
   if (reused > 0)
     s += " (" + std::to_string(reused) +
          " reused from identical tasks done before, not rendered again)";
@@ -29,64 +37,73 @@ std::string describe_job(const nlohmann::json& j) {
 }
 
 namespace {
-bool all_workers_blocked(FarmClient& client, const nlohmann::json& job) {
-  std::set<std::string> blocked;
-  for (const auto& b : job.at("blocked_workers")) blocked.insert(b.get<std::string>());
-  const nlohmann::json all = client.get_json("/workers");
-  for (const auto& w : all.at("workers"))
-    if (!blocked.count(w.at("worker_id").get<std::string>())) return false;
+
+bool all_workers_blocked(FarmClient& client, const protocol::JobDetail& job) {
+  const std::set<std::string> blocked(job.blocked_workers.begin(), job.blocked_workers.end());
+  const auto all =
+      client.get_json(std::string(protocol::paths::kWorkers)).get<protocol::WorkerList>();
+  for (const protocol::WorkerInfo& w : all.workers)
+    if (!blocked.count(w.worker_id)) return false;
   return true;
 }
+
+// Settled tasks plus the running ones' heartbeat progress.
+double tasks_settled(const protocol::JobDetail& j) {
+  const protocol::JobCounts& c = j.summary.counts;
+  double settled = c.done + c.failed + c.canceled;
+  for (const protocol::TaskInfo& t : j.tasks)
+    if (t.progress) settled += std::clamp(*t.progress, 0.0, 1.0);
+  return settled;
+}
+
+void report_failed_tasks(const protocol::JobDetail& j, std::set<int64_t>& reported) {
+  for (const protocol::TaskInfo& t : j.tasks)
+    if (t.state == "failed" && reported.insert(t.id).second)
+      spdlog::error(
+          "job {}: task {} (frame {}, samples [{}, {})) failed after {} attempts; "
+          "`vesper logs {}` shows why",
+          j.summary.id, t.id, t.frame, t.sample_begin, t.sample_end, t.attempts, j.summary.id);
+}
+
 }  // namespace
 
-nlohmann::json wait_for_job(FarmClient& client, long long job, bool show_progress,
-                            const std::function<bool()>& should_stop) {
-  const std::string path = "/jobs/" + std::to_string(job);
+protocol::JobDetail wait_for_job(FarmClient& client, int64_t job, bool show_progress,
+                                 const std::function<bool()>& should_stop) {
+  const std::string path = protocol::job_path(job);
   Progress progress("job " + std::to_string(job));
-  std::set<long long> reported;
+  std::set<int64_t> reported;
   auto delay = std::chrono::milliseconds(100);
   for (;;) {
-    nlohmann::json j;
+    nlohmann::json answer;
     try {
-      j = client.get_json(path);
+      answer = client.get_json(path);
     } catch (const FarmClientError& e) {
       // The server may be restarting: keep waiting, but say so.
       spdlog::warn("{} (retrying)", e.what());
       std::this_thread::sleep_for(std::chrono::seconds(1));
       continue;
     }
-    for (const auto& t : j.value("tasks", nlohmann::json::array()))
-      if (t.at("state") == "failed" && reported.insert(t.at("id").get<long long>()).second)
-        spdlog::error(
-            "job {}: task {} (frame {}, samples [{}, {})) failed after {} attempts; "
-            "`vesper logs {}` shows why",
-            job, t.at("id").get<long long>(), t.at("frame").get<int>(),
-            t.at("sample_begin").get<int>(), t.at("sample_end").get<int>(),
-            t.at("attempts").get<int>(), job);
-    const int total = j.at("total").get<int>();
-    const auto& c = j.at("counts");
-    // Settled tasks plus the running ones' heartbeat progress, in thousandths.
-    double settled =
-        c.at("done").get<int>() + c.at("failed").get<int>() + c.at("canceled").get<int>();
-    for (const auto& t : j.value("tasks", nlohmann::json::array()))
-      if (t.contains("progress")) settled += std::clamp(t.at("progress").get<double>(), 0.0, 1.0);
-    if (show_progress && total > 0) progress.update(size_t(settled * 1000), size_t(total) * 1000);
-    if (j.at("finished").get<bool>() || j.at("state") == "canceled" ||
-        (should_stop && should_stop())) {
+    const auto j = answer.get<protocol::JobDetail>();
+    report_failed_tasks(j, reported);
+    const int total = j.summary.total;
+    const protocol::JobCounts& c = j.summary.counts;
+    // In thousandths, so that running tasks move the bar.
+    if (show_progress && total > 0)
+      progress.update(size_t(tasks_settled(j) * 1000), size_t(total) * 1000);
+    if (j.summary.finished || j.summary.state == "canceled" || (should_stop && should_stop())) {
       if (show_progress) progress.finish();
       return j;
     }
     // Queued work no registered worker may take (each is blocklisted for this
     // job) would be waited for forever: say so and stop waiting.
-    if (c.at("queued").get<int>() > 0 && c.at("leased").get<int>() == 0 &&
-        !j.value("blocked_workers", nlohmann::json::array()).empty() &&
+    if (c.queued > 0 && c.leased == 0 && !j.blocked_workers.empty() &&
         all_workers_blocked(client, j)) {
       if (show_progress) progress.finish();
       spdlog::error(
           "job {}: every registered worker is blocklisted for this job after failing "
           "its tasks, so its {} queued tasks will not run; see `vesper logs {}`, fix "
           "the cause, then `vesper retry {}`",
-          job, c.at("queued").get<int>(), job, job);
+          job, c.queued, job, job);
       return j;
     }
     std::this_thread::sleep_for(delay);

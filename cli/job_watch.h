@@ -1,9 +1,11 @@
 #pragma once
 // Waiting for a farm job with a progress bar, and one-line job summaries.
+#include <cstdint>
 #include <functional>
-#include <nlohmann/json.hpp>
+#include <string>
 
 #include "cli/farm_client.h"
+#include "protocol/job_messages.h"
 
 namespace vesper::cli {
 
@@ -12,10 +14,12 @@ namespace vesper::cli {
 // blocklisted for it: logged as an error), drawing tasks done / total on
 // stderr. Logs each task that failed for good. Returns the last answer.
 // `should_stop` (optional) is asked between polls: true returns at once.
-nlohmann::json wait_for_job(FarmClient& client, long long job, bool show_progress = true,
-                            const std::function<bool()>& should_stop = {});
+protocol::JobDetail wait_for_job(FarmClient& client, int64_t job, bool show_progress = true,
+                                 const std::function<bool()>& should_stop = {});
 
 // "job 3 'night-room': active, 6/6 done, 0 failed, ..."
-std::string describe_job(const nlohmann::json& summary);
+std::string describe_job(const protocol::JobSummary& job);
+// The same, plus how many tasks were reused from identical ones done before.
+std::string describe_job(const protocol::JobDetail& job);
 
 }  // namespace vesper::cli

@@ -24,7 +24,7 @@ struct JobRequest {
 JobRequest job_request_defaults(const FarmSettings& settings, const std::filesystem::path& scene);
 
 // Reads a job file (format "vesper-job/1"; docs/farm.md) over `defaults`.
-// Throws std::runtime_error "<file>: <json path>: <what was expected>".
+// Throws JsonError "<file>: <json path>: <what was expected>".
 JobRequest read_job_file(const std::filesystem::path& file, JobRequest defaults);
 
 struct Submitted {

@@ -9,7 +9,11 @@
 #include "cli/job_watch.h"
 #include "cli/scene_package.h"
 #include "cli/submit.h"
+#include "common/json_parse.h"
+#include "common/json_reader.h"
 #include "jobs/frame_range.h"
+#include "protocol/job_messages.h"
+#include "protocol/paths.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace vesper::cli {
@@ -20,6 +24,16 @@ std::string default_job_name(const std::filesystem::path& scene) {
   if (scene.stem() == "scene" && scene.has_parent_path())
     return std::filesystem::absolute(scene).parent_path().filename().string();
   return scene.stem().string();
+}
+
+constexpr std::string_view kJobFormat = "vesper-job/1";
+
+// "frames": a range string ("1-100x5") or a single frame number.
+std::string frame_range_text(const JsonReader& node) {
+  if (node.json().is_number_integer()) return std::to_string(node.json().get<long long>());
+  if (!node.json().is_string())
+    node.fail("expected a frame range string like \"1-100x5\", got " + describe_json(node.json()));
+  return node.as_string();
 }
 
 // A temp file for the packed scene, removed when the upload is done.
@@ -46,58 +60,20 @@ JobRequest job_request_defaults(const FarmSettings& s, const std::filesystem::pa
 }
 
 JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
-  const std::string label = file.string();
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(label + ": cannot read");
-  const auto doc = nlohmann::json::parse(in, nullptr, false);
-  if (doc.is_discarded() || !doc.is_object())
-    throw std::runtime_error(label + ": expected a JSON object (a vesper-job/1 file)");
-  auto fail = [&](const std::string& key, const std::string& what) -> std::runtime_error {
-    return std::runtime_error(label + ": /" + key + ": " + what);
-  };
-  for (const auto& [key, value] : doc.items()) {
-    auto integer = [&](int lo, int hi) {
-      if (!value.is_number_integer() || value.get<long long>() < lo || value.get<long long>() > hi)
-        throw fail(key, "expected an integer in [" + std::to_string(lo) + ", " +
-                            std::to_string(hi) + "], got " + value.dump());
-      return value.get<int>();
-    };
-    if (key == "format") {
-      if (value != "vesper-job/1") throw fail(key, "expected \"vesper-job/1\"");
-    } else if (key == "scene") {
-      if (!value.is_string()) throw fail(key, "expected the scene file's path (a string)");
-      std::filesystem::path p = value.get<std::string>();
-      r.scene = p.is_relative() ? file.parent_path() / p : p;
-      r.name = default_job_name(r.scene);
-    } else if (key == "frames") {
-      if (value.is_string())
-        r.frames = value.get<std::string>();
-      else if (value.is_number_integer())
-        r.frames = std::to_string(value.get<long long>());
-      else
-        throw fail(key, "expected a frame range string like \"1-100x5\"");
-    } else if (key == "spp") {
-      r.spp = integer(1, 1 << 20);
-    } else if (key == "samples_per_task") {
-      r.samples_per_task = integer(0, 1 << 20);
-    } else if (key == "priority") {
-      r.priority = integer(-1000000, 1000000);
-    } else if (key == "max_attempts") {
-      r.max_attempts = integer(1, 100);
-    } else if (key != "name") {
-      throw fail(key,
-                 "unknown key (expected format, scene, name, frames, spp, "
-                 "samples_per_task, priority, max_attempts)");
-    }
-  }
-  if (doc.value("format", "") != "vesper-job/1")
-    throw std::runtime_error(label + ": /format: expected \"vesper-job/1\"");
-  if (!doc.contains("scene")) throw std::runtime_error(label + ": /scene: missing");
-  if (doc.contains("name")) {
-    if (!doc["name"].is_string() || doc["name"].get<std::string>().empty())
-      throw fail("name", "expected a non-empty string");
-    r.name = doc["name"].get<std::string>();
-  }
+  const nlohmann::json doc = read_json_file(file, "the job file");
+  JsonReader root(doc, file.string(), "");
+  root.expect_object();
+  root.child("format").expect_string(kJobFormat);
+  root.allow_keys(
+      {"format", "scene", "name", "frames", "spp", "samples_per_task", "priority", "max_attempts"});
+  const std::filesystem::path scene = root.string("scene");
+  r.scene = scene.is_relative() ? file.parent_path() / scene : scene;
+  r.name = root.has("name") ? root.string("name") : default_job_name(r.scene);
+  if (const auto frames = root.optional_child("frames")) r.frames = frame_range_text(*frames);
+  r.spp = int(root.integer("spp", r.spp, 1, 1 << 20));
+  r.samples_per_task = int(root.integer("samples_per_task", r.samples_per_task, 0, 1 << 20));
+  r.priority = int(root.integer("priority", r.priority, -1000000, 1000000));
+  r.max_attempts = int(root.integer("max_attempts", r.max_attempts, 1, 100));
   return r;
 }
 
@@ -108,12 +84,12 @@ Submitted submit_job(FarmClient& client, const JobRequest& r, bool dry_run) {
   parse_frame_range(r.frames);
   const PackedScene packed = pack_scene(r.scene);
 
-  nlohmann::json assets = nlohmann::json::array();
+  protocol::SubmitRequest body;
   for (const PackedAsset& a : packed.assets) {
     const std::string sha = client.put_blob(a.local);
     if (sha != a.sha256)
       throw FarmClientError(a.local.string() + ": changed while it was being submitted");
-    assets.push_back({{"name", a.name}, {"blob", sha}});
+    body.assets.push_back({a.name, sha});
   }
   TempFile tmp{std::filesystem::temp_directory_path() /
                ("vesper-submit-" + std::to_string(::getpid()) + ".json")};
@@ -122,20 +98,25 @@ Submitted submit_job(FarmClient& client, const JobRequest& r, bool dry_run) {
     out << packed.json;
     if (!out.flush()) throw FarmClientError(tmp.path.string() + ": cannot write");
   }
-  const std::string scene_blob = client.put_blob(tmp.path);
+  body.scene = client.put_blob(tmp.path);
+  body.name = r.name;
+  body.frames = r.frames;
+  body.spp = r.spp > 0 ? r.spp : desc.render.spp;
+  body.samples_per_task = r.samples_per_task;
+  body.priority = r.priority;
+  body.max_attempts = r.max_attempts;
 
-  nlohmann::json body = {{"name", r.name},
-                         {"scene", scene_blob},
-                         {"frames", r.frames},
-                         {"spp", r.spp > 0 ? r.spp : desc.render.spp},
-                         {"samples_per_task", r.samples_per_task},
-                         {"priority", r.priority},
-                         {"max_attempts", r.max_attempts}};
-  if (!assets.empty()) body["assets"] = assets;
-  const nlohmann::json answer = client.post_json(dry_run ? "/jobs?dry_run=1" : "/jobs", body);
+  std::string path(protocol::paths::kJobs);
+  if (dry_run) path += "?" + std::string(protocol::kDryRunParam) + "=1";
+  const nlohmann::json answer = client.post_json(path, body);
   Submitted s;
-  s.id = dry_run ? 0 : answer.at("id").get<long long>();
-  s.task_count = answer.at("task_count").get<int>();
+  if (dry_run) {
+    s.task_count = int(answer.get<protocol::DryRunResponse>().task_count);
+  } else {
+    const auto created = answer.get<protocol::SubmitResponse>();
+    s.id = created.id;
+    s.task_count = int(created.task_count);
+  }
   return s;
 }
 
@@ -145,7 +126,7 @@ int run_submit(const SubmitCommandOptions& o) {
     JobRequest r = job_request_defaults(settings, o.input);
     std::ifstream probe(o.input);
     const auto doc = nlohmann::json::parse(probe, nullptr, false);
-    if (doc.is_object() && doc.value("format", "") == "vesper-job/1") r = read_job_file(o.input, r);
+    if (doc.is_object() && doc.value("format", "") == kJobFormat) r = read_job_file(o.input, r);
     if (o.frames) r.frames = *o.frames;
     if (o.name) r.name = *o.name;
     if (o.spp) r.spp = *o.spp;
@@ -166,9 +147,9 @@ int run_submit(const SubmitCommandOptions& o) {
     std::printf("%lld\n", s.id);
     std::fflush(stdout);
     if (!o.wait) return 0;
-    const nlohmann::json j = wait_for_job(client, s.id);
+    const protocol::JobDetail j = wait_for_job(client, s.id);
     spdlog::info("{}", describe_job(j));
-    return j.at("counts").at("done").get<int>() == j.at("total").get<int>() ? 0 : 3;
+    return j.summary.counts.done == j.summary.total ? 0 : 3;
   } catch (const SceneError& e) {
     spdlog::error("{}", e.what());
     return 2;

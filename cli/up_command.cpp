@@ -21,6 +21,8 @@
 #include "compositor/comp_run.h"
 #include "compositor/recipe.h"
 #include "jobs/frame_range.h"
+#include "protocol/job_messages.h"
+#include "protocol/paths.h"
 #include "renderer/scene/scene_loader.h"
 #include "server/server.h"
 #include "worker/worker.h"
@@ -167,13 +169,14 @@ class LocalWorkers {
 // dir: they would take the workers first. Its finished work stays (and is
 // reused where the inputs are the same).
 void cancel_leftover_jobs(FarmClient& client, const std::filesystem::path& data_dir) {
-  const nlohmann::json previous = client.get_json("/jobs");
-  for (const auto& j : previous.at("jobs"))
-    if (!j.at("finished").get<bool>() && j.at("state") != "canceled") {
-      client.post_json("/jobs/" + std::to_string(j.at("id").get<long long>()) + "/cancel",
+  const auto previous =
+      client.get_json(std::string(protocol::paths::kJobs)).get<protocol::JobList>();
+  for (const protocol::JobSummary& j : previous.jobs)
+    if (!j.finished && j.state != "canceled") {
+      client.post_json(protocol::job_action_path(j.id, protocol::JobAction::Cancel),
                        nlohmann::json::object());
-      spdlog::warn("canceled job {} '{}' left unfinished by an earlier `vesper up` in {}",
-                   j.at("id").get<long long>(), j.at("name").get<std::string>(), data_dir.string());
+      spdlog::warn("canceled job {} '{}' left unfinished by an earlier `vesper up` in {}", j.id,
+                   j.name, data_dir.string());
     }
 }
 
@@ -188,14 +191,15 @@ int submit_wait_fetch(const UpPlan& plan, Server& server, LocalWorkers& workers,
   spdlog::info("submitted job {} '{}': frames {}, {} tasks", s.id, plan.request.name,
                plan.request.frames, s.task_count);
   workers.hide_info();
-  const nlohmann::json final_state = wait_for_job(client, s.id, true, [] { return g_stop.load(); });
+  const protocol::JobDetail final_state =
+      wait_for_job(client, s.id, true, [] { return g_stop.load(); });
   workers.stop();
   if (g_stop) {
     spdlog::warn(
         "interrupted: {}; kept in {} (`vesper server --data-dir {}` serves it, "
         "`vesper fetch` gets its frames)",
-        describe_job(client.get_json("/jobs/" + std::to_string(s.id))), plan.data_dir.string(),
-        plan.data_dir.string());
+        describe_job(client.get_json(protocol::job_path(s.id)).get<protocol::JobDetail>()),
+        plan.data_dir.string(), plan.data_dir.string());
     return 130;
   }
   spdlog::info("{}", describe_job(final_state));

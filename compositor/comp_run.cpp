@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <system_error>
 
 #include "compositor/grade.h"
@@ -114,6 +115,113 @@ void write_display_image(const RgbaImage& display, const CompOutputs& o, const f
   if (!ok || !closed) throw CompError(final_path.string() + ": cannot write: " + out->geterror());
 }
 
+namespace {
+
+fs::path at_frame(const fs::path& p, std::optional<long> frame) {
+  return frame ? frame_path(p, *frame) : p;
+}
+
+// The inputs one frame's layers use, each read once.
+struct FrameInputs {
+  std::vector<LayeredImage> images;
+  std::vector<fs::path> paths;
+};
+
+FrameInputs read_frame_inputs(const CompRecipe& recipe, std::optional<long> frame) {
+  FrameInputs in;
+  in.images.resize(recipe.inputs.size());
+  in.paths.resize(recipe.inputs.size());
+  std::vector<bool> loaded(recipe.inputs.size(), false);
+  for (const CompLayer& l : recipe.layers) {
+    if (l.input >= recipe.inputs.size()) throw CompError(recipe.label + ": bad input index");
+    if (loaded[l.input]) continue;
+    const CompInput& input = recipe.inputs[l.input];
+    in.paths[l.input] = input.sequence ? at_frame(input.path, frame) : input.path;
+    in.images[l.input] = read_input(in.paths[l.input]);
+    loaded[l.input] = true;
+  }
+  return in;
+}
+
+// The layers mixed onto a canvas the size of the first layer's image.
+RgbaImage mix_frame(const CompRecipe& recipe, const FrameInputs& in) {
+  const LayeredImage& first = in.images[recipe.layers.front().input];
+  RgbaImage canvas(first.width, first.height);
+  for (const CompLayer& l : recipe.layers) {
+    const LayeredImage& img = in.images[l.input];
+    const std::string source = in.paths[l.input].string();
+    const std::vector<std::string> available = list_layers(img);
+    if (std::find(available.begin(), available.end(), l.op.layer) == available.end()) {
+      throw CompError(recipe.label + ": " + l.json_path + ": no layer '" + l.op.layer + "' in " +
+                      source + " (layers: " + join(available) + ")");
+    }
+    if (img.width != canvas.width || img.height != canvas.height) {
+      throw CompError(recipe.label + ": " + l.json_path + ": " + source + " is " +
+                      std::to_string(img.width) + "x" + std::to_string(img.height) +
+                      ", the composite " + std::to_string(canvas.width) + "x" +
+                      std::to_string(canvas.height));
+    }
+    blend_layer(canvas, extract_layer(img, l.op.layer, source), l.op);
+  }
+  return canvas;
+}
+
+// The graded scene-linear composite, with the first input's metadata.
+void write_graded_exr(const RgbaImage& canvas, const LayeredImage& first,
+                      const std::string& recipe_label, const fs::path& tmp,
+                      const fs::path& final_path) {
+  LayeredImage exr;
+  exr.width = canvas.width;
+  exr.height = canvas.height;
+  exr.channels = {"R", "G", "B", "A"};
+  exr.pixels = canvas.pixels;
+  exr.metadata = first.metadata;
+  exr.metadata[metadata_key::kCompRecipe] = recipe_label;
+  exr.metadata[metadata_key::kCompColorspace] = "scene_linear (graded)";
+  try {
+    write_exr(exr, tmp);
+  } catch (const ImageIoError& e) {
+    throw CompError(final_path.string() + ": cannot write: " + e.what());
+  }
+}
+
+// One frame: read, mix, grade, display; every output written, then committed.
+CompFrameReport comp_frame(const CompRecipe& recipe, const Grader& grader,
+                           const fs::path& histogram_pattern, std::optional<long> frame) {
+  const CompOutputs& out = recipe.outputs;
+  CompFrameReport fr;
+  fr.frame = frame;
+  const FrameInputs inputs = read_frame_inputs(recipe, frame);
+  RgbaImage canvas = mix_frame(recipe, inputs);
+  FrameFiles files;
+  grader.apply_grade(canvas);
+  if (!out.exr.empty()) {
+    fr.exr = at_frame(out.exr, frame);
+    write_graded_exr(canvas, inputs.images[recipe.layers.front().input], recipe.label,
+                     files.temp_for(fr.exr), fr.exr);
+  }
+  RgbaImage display = std::move(canvas);
+  grader.apply_display(display);
+  if (!out.image.empty()) {
+    fr.image = at_frame(out.image, frame);
+    write_display_image(display, out, files.temp_for(fr.image), fr.image);
+  }
+  fr.display_histogram = display_histogram(display, LumaWeights::Rec709);
+  fr.histogram = at_frame(histogram_pattern, frame);
+  write_text(files.temp_for(fr.histogram), histogram_json(fr.display_histogram) + "\n",
+             fr.histogram);
+  if (!out.histogram_plot.empty()) {
+    fr.histogram_plot = at_frame(out.histogram_plot, frame);
+    write_histogram_png(fr.display_histogram, files.temp_for(fr.histogram_plot));
+  }
+  files.commit();
+  fr.width = display.width;
+  fr.height = display.height;
+  return fr;
+}
+
+}  // namespace
+
 std::vector<uint16_t> quantize_rgb(const RgbaImage& display, int bits) {
   const float maxv = bits == 16 ? 65535.f : 255.f;
   std::vector<uint16_t> out(display.pixel_count() * 3);
@@ -141,79 +249,9 @@ CompReport run_comp(const CompRecipe& recipe, const CompProgress& progress) {
   const size_t total = sequence ? recipe.frames.size() : 1;
   CompReport report;
   for (size_t fi = 0; fi < total; ++fi) {
-    CompFrameReport fr;
-    if (sequence) fr.frame = recipe.frames[fi];
-    auto resolve = [&](const fs::path& p) { return fr.frame ? frame_path(p, *fr.frame) : p; };
-
-    // Read the inputs this frame uses.
-    std::vector<LayeredImage> images(recipe.inputs.size());
-    std::vector<fs::path> paths(recipe.inputs.size());
-    std::vector<bool> loaded(recipe.inputs.size(), false);
-    for (const CompLayer& l : recipe.layers) {
-      if (l.input >= recipe.inputs.size()) throw CompError(recipe.label + ": bad input index");
-      if (loaded[l.input]) continue;
-      const CompInput& in = recipe.inputs[l.input];
-      paths[l.input] = in.sequence ? resolve(in.path) : in.path;
-      images[l.input] = read_input(paths[l.input]);
-      loaded[l.input] = true;
-    }
-
-    // Mix.
-    const LayeredImage& first = images[recipe.layers.front().input];
-    RgbaImage canvas(first.width, first.height);
-    for (const CompLayer& l : recipe.layers) {
-      const LayeredImage& img = images[l.input];
-      const std::string source = paths[l.input].string();
-      const std::vector<std::string> available = list_layers(img);
-      if (std::find(available.begin(), available.end(), l.op.layer) == available.end()) {
-        throw CompError(recipe.label + ": " + l.json_path + ": no layer '" + l.op.layer + "' in " +
-                        source + " (layers: " + join(available) + ")");
-      }
-      if (img.width != canvas.width || img.height != canvas.height) {
-        throw CompError(recipe.label + ": " + l.json_path + ": " + source + " is " +
-                        std::to_string(img.width) + "x" + std::to_string(img.height) +
-                        ", the composite " + std::to_string(canvas.width) + "x" +
-                        std::to_string(canvas.height));
-      }
-      blend_layer(canvas, extract_layer(img, l.op.layer, source), l.op);
-    }
-
-    FrameFiles files;
-    grader.apply_grade(canvas);
-    if (!out.exr.empty()) {
-      fr.exr = resolve(out.exr);
-      LayeredImage exr;
-      exr.width = canvas.width;
-      exr.height = canvas.height;
-      exr.channels = {"R", "G", "B", "A"};
-      exr.pixels = canvas.pixels;
-      exr.metadata = first.metadata;
-      exr.metadata[metadata_key::kCompRecipe] = recipe.label;
-      exr.metadata[metadata_key::kCompColorspace] = "scene_linear (graded)";
-      try {
-        write_exr(exr, files.temp_for(fr.exr));
-      } catch (const ImageIoError& e) {
-        throw CompError(fr.exr.string() + ": cannot write: " + e.what());
-      }
-    }
-    RgbaImage display = std::move(canvas);
-    grader.apply_display(display);
-    if (!out.image.empty()) {
-      fr.image = resolve(out.image);
-      write_display_image(display, out, files.temp_for(fr.image), fr.image);
-    }
-    fr.display_histogram = display_histogram(display, LumaWeights::Rec709);
-    fr.histogram = resolve(histogram_pattern);
-    write_text(files.temp_for(fr.histogram), histogram_json(fr.display_histogram) + "\n",
-               fr.histogram);
-    if (!out.histogram_plot.empty()) {
-      fr.histogram_plot = resolve(out.histogram_plot);
-      write_histogram_png(fr.display_histogram, files.temp_for(fr.histogram_plot));
-    }
-    files.commit();
-    fr.width = display.width;
-    fr.height = display.height;
-    report.frames.push_back(std::move(fr));
+    const std::optional<long> frame =
+        sequence ? std::optional<long>(recipe.frames[fi]) : std::nullopt;
+    report.frames.push_back(comp_frame(recipe, grader, histogram_pattern, frame));
     if (progress) progress(fi + 1, total);
   }
   return report;

@@ -74,51 +74,35 @@ void marker(Canvas& c, int x, Rgb8 colour) {
     c.rect(x + 1 - (6 - row), 4 + row, x + 1 + (6 - row) + 1, 5 + row, colour);
 }
 
-}  // namespace
-
-void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
-                         const Histogram* reference) {
-  namespace fs = std::filesystem;
-  const int nb = int(h.bins.size());
-  if (nb == 0) throw CompError(path.string() + ": cannot plot a histogram without bins");
-  if (reference && reference->bins.size() != h.bins.size())
-    throw CompError(path.string() + ": the reference histogram has a different number of bins");
-  Canvas c;
-  c.rect(0, 0, kW, kH, kBackground);
-  c.rect(kX0, kY0, kX1, kY1, kPlotArea);
-
-  const std::vector<double> f = fractions(h);
-  const std::vector<double> fr = reference ? fractions(*reference) : std::vector<double>{};
-  // Common scale from the interior bins (a black background or blown
-  // highlights in an end bin would flatten the rest); 5% headroom.
+// Common scale from the interior bins (a black background or blown
+// highlights in an end bin would flatten the rest); 5% headroom.
+double common_scale(const std::vector<double>& f, const std::vector<double>& fr) {
+  const size_t nb = f.size();
   double top = 0;
-  for (int i = 1; i + 1 < nb; ++i) {
-    top = std::max(top, f[size_t(i)]);
-    if (reference) top = std::max(top, fr[size_t(i)]);
+  for (size_t i = 1; i + 1 < nb; ++i) {
+    top = std::max(top, f[i]);
+    if (!fr.empty()) top = std::max(top, fr[i]);
   }
   if (top == 0) {
     for (double v : f) top = std::max(top, v);
     for (double v : fr) top = std::max(top, v);
   }
-  top *= 1.05;
+  return top * 1.05;
+}
 
-  // Gridlines at quarters of the range and of the scale.
+// Gridlines at quarters of the range and of the scale.
+void draw_grid(Canvas& c) {
   for (int q = 1; q < 4; ++q) {
     const int x = kX0 + (kX1 - kX0) * q / 4;
     c.rect(x, kY0, x + 1, kY1, kGrid);
     const int y = kY1 - (kY1 - kY0) * q / 4;
     c.rect(kX0, y, kX1, y + 1, kGrid);
   }
+}
 
-  // Median of the image: a line behind the histogram and a marker above the plot.
-  if (h.count > 0) {
-    const int xm = value_to_x(h, h.median);
-    c.rect(xm, kY0, xm + 2, kY1, kMedian, 0.85);
-    marker(c, xm, kMedian);
-  }
-
-  // The histogram: a filled area, anti-aliased at the top, with a bright edge.
-  const int plot_w = kX1 - kX0;
+// The histogram: a filled area, anti-aliased at the top, with a bright edge.
+void draw_fill(Canvas& c, const std::vector<double>& f, double top) {
+  const int nb = int(f.size()), plot_w = kX1 - kX0;
   for (int x = kX0; x < kX1; ++x) {
     const int bin = std::min(nb - 1, (x - kX0) * nb / plot_w);
     const double v = f[size_t(bin)];
@@ -131,26 +115,29 @@ void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
     c.set(x, kY1 - full, capped ? kCapped : kEdge);
     if (capped) c.rect(x, kY0, x + 1, kY0 + 6, kCapped);
   }
+}
 
-  // The reference: a 2 px step outline.
-  if (reference) {
-    int prev_y = kY1;
-    for (int i = 0; i < nb; ++i) {
-      const int xa = kX0 + i * plot_w / nb, xb = kX0 + (i + 1) * plot_w / nb;
-      const int y = kY1 - int(std::lround(bar_height(fr[size_t(i)], top)));
-      if (y != prev_y)
-        c.rect(xa, std::min(prev_y, y) - 1, xa + 2, std::max(prev_y, y) + 1, kReference, 0.9);
-      if (fr[size_t(i)] > 0) c.rect(xa, y - 1, xb, y + 1, kReference, 0.9);
-      prev_y = y;
-    }
-    if (prev_y != kY1) c.rect(kX1 - 2, prev_y - 1, kX1, kY1, kReference, 0.9);
-    // Reference median: dashed.
-    const int xm = value_to_x(h, reference->median);
-    for (int y = kY0; y < kY1; y += 8) c.rect(xm, y, xm + 2, std::min(kY1, y + 4), kReference);
-    marker(c, xm, kReference);
+// The reference: a 2 px step outline, and its median dashed.
+void draw_reference(Canvas& c, const Histogram& h, const Histogram& reference,
+                    const std::vector<double>& fr, double top) {
+  const int nb = int(fr.size()), plot_w = kX1 - kX0;
+  int prev_y = kY1;
+  for (int i = 0; i < nb; ++i) {
+    const int xa = kX0 + i * plot_w / nb, xb = kX0 + (i + 1) * plot_w / nb;
+    const int y = kY1 - int(std::lround(bar_height(fr[size_t(i)], top)));
+    if (y != prev_y)
+      c.rect(xa, std::min(prev_y, y) - 1, xa + 2, std::max(prev_y, y) + 1, kReference, 0.9);
+    if (fr[size_t(i)] > 0) c.rect(xa, y - 1, xb, y + 1, kReference, 0.9);
+    prev_y = y;
   }
+  if (prev_y != kY1) c.rect(kX1 - 2, prev_y - 1, kX1, kY1, kReference, 0.9);
+  const int xm = value_to_x(h, reference.median);
+  for (int y = kY0; y < kY1; y += 8) c.rect(xm, y, xm + 2, std::min(kY1, y + 4), kReference);
+  marker(c, xm, kReference);
+}
 
-  // Clipped fractions: red bars in the side margins, height = fraction of the plot.
+// Clipped fractions: red bars in the side margins, height = fraction of the plot.
+void draw_clipped(Canvas& c, const Histogram& h) {
   auto clip_bar = [&](double frac, int x0) {
     if (frac <= 0) return;
     const int hp = std::max(2, int(std::lround(frac * double(kY1 - kY0))));
@@ -158,8 +145,11 @@ void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
   };
   clip_bar(h.clipped_low, 4);
   clip_bar(h.clipped_high, kW - 12);
+}
 
-  // Key strip: the grey of each position of the axis, and ticks.
+// Key strip: the grey of each position of the axis, and ticks.
+void draw_key(Canvas& c, const Histogram& h) {
+  const int plot_w = kX1 - kX0;
   for (int x = kX0; x < kX1; ++x) {
     const uint8_t g = key_grey(h, double(x - kX0) / double(plot_w - 1));
     c.rect(x, kKeyY0, x + 1, kKeyY1, Rgb8{g, g, g});
@@ -174,8 +164,11 @@ void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
       c.rect(x, kKeyY1 + 2, x + 1, kKeyY1 + (s == 0 ? 14 : 5), s == 0 ? kMedian : kTick);
     }
   }
+}
 
-  // Write next to the target and rename, so a failure leaves nothing behind.
+// Written next to the target and renamed, so a failure leaves nothing behind.
+void write_png(const Canvas& c, const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out)
     throw CompError(path.string() + ": cannot write a plot in this format: " + OIIO::geterror());
@@ -196,6 +189,33 @@ void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
     fs::remove(tmp, ec);
     throw CompError(path.string() + ": cannot move the finished plot into place: " + ec.message());
   }
+}
+
+}  // namespace
+
+void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
+                         const Histogram* reference) {
+  if (h.bins.empty()) throw CompError(path.string() + ": cannot plot a histogram without bins");
+  if (reference && reference->bins.size() != h.bins.size())
+    throw CompError(path.string() + ": the reference histogram has a different number of bins");
+  Canvas c;
+  c.rect(0, 0, kW, kH, kBackground);
+  c.rect(kX0, kY0, kX1, kY1, kPlotArea);
+  const std::vector<double> f = fractions(h);
+  const std::vector<double> fr = reference ? fractions(*reference) : std::vector<double>{};
+  const double top = common_scale(f, fr);
+  draw_grid(c);
+  // Median of the image: a line behind the histogram and a marker above the plot.
+  if (h.count > 0) {
+    const int xm = value_to_x(h, h.median);
+    c.rect(xm, kY0, xm + 2, kY1, kMedian, 0.85);
+    marker(c, xm, kMedian);
+  }
+  draw_fill(c, f, top);
+  if (reference) draw_reference(c, h, *reference, fr, top);
+  draw_clipped(c, h);
+  draw_key(c, h);
+  write_png(c, path);
 }
 
 }  // namespace vesper

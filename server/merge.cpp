@@ -4,7 +4,7 @@
 
 #include <system_error>
 
-#include "jobs/child_process.h"
+#include "process/child_process.h"
 
 namespace fs = std::filesystem;
 

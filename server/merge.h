@@ -1,6 +1,6 @@
 #pragma once
 // Merging a frame's sample-range results: `vesper merge -o OUT.exr P1 P2 ...
-// -q` in a child process (posix_spawn, no shell; jobs/child_process.h).
+// -q` in a child process (posix_spawn, no shell; process/child_process.h).
 #include <atomic>
 #include <filesystem>
 #include <string>

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <system_error>
 
+#include "common/json_parse.h"
+#include "common/json_reader.h"
 #include "renderer/output/range_metadata.h"
 
 namespace vesper {
@@ -77,51 +79,127 @@ uint32_t crc_of(const std::vector<unsigned char>& bytes) {
   return uint32_t(crc);
 }
 
-// Checked access to the header's keys.
-class Header {
- public:
-  Header(const json& j, std::string source) : j_(j), source_(std::move(source)) {}
-
-  const json& get(const std::string& key, json::value_t type, const char* expected) const {
-    const auto it = j_.find(key);
-    if (it == j_.end()) fail(source_, "header: missing key '" + key + "'");
-    const bool ok =
-        type == json::value_t::number_integer
-            ? it->is_number_integer()
-            : (type == json::value_t::number_float ? it->is_number() : it->type() == type);
-    if (!ok)
-      fail(source_, "header: key '" + key + "': expected " + expected + ", got " + it->dump());
-    return *it;
-  }
-  int64_t integer(const std::string& key, int64_t lo, int64_t hi) const {
-    const json& v = get(key, json::value_t::number_integer, "an integer");
-    if (v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(std::numeric_limits<int64_t>::max()))
-      fail(source_, "header: key '" + key + "': out of range: " + v.dump());
-    const int64_t x = v.get<int64_t>();
-    if (x < lo || x > hi)
-      fail(source_, "header: key '" + key + "': expected an integer in [" + std::to_string(lo) +
-                        ", " + std::to_string(hi) + "], got " + v.dump());
-    return x;
-  }
-  uint64_t unsigned_integer(const std::string& key) const {
-    const json& v = get(key, json::value_t::number_integer, "a non-negative integer");
-    if (!v.is_number_unsigned() && v.get<int64_t>() < 0)
-      fail(source_, "header: key '" + key + "': expected a non-negative integer, got " + v.dump());
-    return v.get<uint64_t>();
-  }
-  std::string string(const std::string& key) const {
-    return get(key, json::value_t::string, "a string").get<std::string>();
-  }
-  void only_keys(std::initializer_list<const char*> keys, const std::string& where) const {
-    for (const auto& [k, v] : j_.items())
-      if (std::none_of(keys.begin(), keys.end(), [&](const char* a) { return k == a; }))
-        fail(source_, where + ": unknown key '" + k + "'");
-  }
-
- private:
-  const json& j_;
-  std::string source_;
+// The "sums" object of the header: how the sums that follow it are stored.
+struct SumsLayout {
+  uint64_t bytes = 0, compressed_bytes = 0, crc32 = 0;
 };
+
+// A string field that must be `expected` (a format this build reads).
+void expect_supported(const JsonReader& node, const char* what, const char* expected) {
+  const std::string got = node.as_string();
+  if (got != expected)
+    node.fail(std::string("unsupported ") + what + " '" + got + "' (expected " + expected + ")");
+}
+
+SumsLayout parse_sums_layout(JsonReader s) {
+  s.allow_keys({"encoding", "compression", "bytes", "compressed_bytes", "crc32"});
+  expect_supported(s.child("encoding"), "encoding", kEncoding);
+  expect_supported(s.child("compression"), "compression", "zlib");
+  return {s.child("bytes").as_uint64(), s.child("compressed_bytes").as_uint64(),
+          s.child("crc32").as_uint64()};
+}
+
+void parse_channels(const JsonReader& channels, Partial& p) {
+  std::set<std::string> seen;
+  for (size_t i = 0; i < channels.size(); ++i) {
+    const JsonReader c = channels.element(i);
+    const std::string name = c.as_string();
+    if (!seen.insert(name).second) c.fail("duplicate channel '" + name + "'");
+    p.channels.push_back(name);
+  }
+  if (p.channels.empty()) channels.fail("expected at least one channel, got an empty array");
+}
+
+void parse_metadata(const JsonReader& meta, Partial& p) {
+  for (const auto& [k, v] : meta.json().items()) {
+    const JsonReader value(v, meta.file(), meta.key_path(k));
+    if (is_range_key(k)) value.fail("'" + k + "' is a header field, not metadata");
+    p.metadata[k] = value.as_string(/*allow_empty=*/true);
+  }
+}
+
+void parse_sample_range(JsonReader& h, Partial& p) {
+  p.sample_begin = int(h.integer("sample_begin", 0, std::numeric_limits<int>::max()));
+  p.sample_end = int(h.integer("sample_end", 0, std::numeric_limits<int>::max()));
+  if (p.sample_end <= p.sample_begin)
+    h.fail_key("sample_end", "empty sample range " + range_text(p));
+  if (int64_t(p.sample_end) - p.sample_begin > kMaxExactSamples)
+    h.fail_key("sample_end", "sample range " + range_text(p) + " longer than " +
+                                 std::to_string(kMaxExactSamples) + " samples");
+}
+
+// The header line (docs/partial-format.md): everything but the sums. Throws
+// JsonError naming `label` and the JSON path of the offending key.
+Partial parse_header(const json& j, const std::string& label, SumsLayout& sums) {
+  JsonReader h(j, label, "");
+  h.expect_object();
+  // The format decides what the rest means, so it is checked first.
+  const JsonReader format = h.child("format");
+  if (format.as_string() != kFormat)
+    format.fail("unsupported format '" + format.as_string() + "' (this build reads " + kFormat +
+                ")");
+  h.allow_keys({"format", "width", "height", "channels", "sample_begin", "sample_end", "frame_spp",
+                "seed", "scene_hash", "renderer_version", "nonfinite_samples", "render_seconds",
+                "metadata", "sums"});
+  Partial p;
+  p.width = int(h.integer("width", 1, kMaxDimension));
+  p.height = int(h.integer("height", 1, kMaxDimension));
+  parse_channels(h.array("channels"), p);
+  parse_sample_range(h, p);
+  p.frame_spp = int(h.integer("frame_spp", 0, std::numeric_limits<int>::max()));
+  p.seed = h.child("seed").as_uint64();
+  p.scene_hash = h.child("scene_hash").as_string(/*allow_empty=*/true);
+  p.renderer_version = h.child("renderer_version").as_string(/*allow_empty=*/true);
+  p.nonfinite_samples = h.child("nonfinite_samples").as_uint64();
+  p.render_seconds = h.number("render_seconds");
+  parse_metadata(h.object("metadata"), p);
+  sums = parse_sums_layout(h.object("sums"));
+  return p;
+}
+
+// The magic line and the header line; the stream is left at the sums.
+std::string read_header_line(std::ifstream& f, const std::string& src) {
+  char magic[kMagicSize] = {};
+  f.read(magic, std::streamsize(kMagicSize));
+  if (size_t(f.gcount()) != kMagicSize || std::memcmp(magic, kMagic, kMagicSize) != 0)
+    fail(src, "not a vesper partial render (bad magic: expected the first line 'VESPER-PARTIAL')");
+  std::string line;
+  if (!std::getline(f, line) || f.eof()) fail(src, "truncated: the header line is incomplete");
+  if (line.size() > kMaxHeaderBytes) fail(src, "header line longer than 16 MiB");
+  return line;
+}
+
+// The rest of the file: exactly the compressed sums.
+std::vector<unsigned char> read_compressed_sums(std::ifstream& f, const std::string& src,
+                                                uint64_t compressed_bytes) {
+  const std::streampos body = f.tellg();
+  f.seekg(0, std::ios::end);
+  const uint64_t available = uint64_t(f.tellg() - body);
+  if (available < compressed_bytes)
+    fail(src, "truncated: expected " + std::to_string(compressed_bytes) +
+                  " bytes of compressed sums, found " + std::to_string(available));
+  if (available > compressed_bytes)
+    fail(src, "size mismatch: " + std::to_string(available - compressed_bytes) +
+                  " unexpected bytes after the compressed sums");
+  std::vector<unsigned char> compressed(compressed_bytes);
+  f.seekg(body);
+  f.read(reinterpret_cast<char*>(compressed.data()), std::streamsize(compressed.size()));
+  if (uint64_t(f.gcount()) != compressed_bytes) fail(src, "read error in the compressed sums");
+  return compressed;
+}
+
+std::vector<unsigned char> decompress_sums(const std::vector<unsigned char>& compressed,
+                                           const SumsLayout& layout, const std::string& src) {
+  std::vector<unsigned char> raw(layout.bytes);
+  uLongf raw_size = uLongf(layout.bytes);
+  const int zr = uncompress(raw.data(), &raw_size, compressed.data(), uLong(compressed.size()));
+  if (zr != Z_OK || raw_size != layout.bytes)
+    fail(src, "corrupt: the compressed sums do not decompress to " + std::to_string(layout.bytes) +
+                  " bytes (zlib: " + (zr == Z_OK ? "short output" : zError(zr)) + ")");
+  if (crc_of(raw) != layout.crc32)
+    fail(src, "corrupt: CRC-32 of the sums does not match the header");
+  return raw;
+}
 
 // The header and the compressed sums of one partial.
 std::string header_line(const Partial& p, size_t raw_bytes, size_t compressed_bytes, uint32_t crc) {
@@ -153,6 +231,65 @@ void check_sums_size(const Partial& p) {
                        std::to_string(p.width) + "x" + std::to_string(p.height) + "x" +
                        std::to_string(p.channels.size()) + " = " +
                        std::to_string(sum_count(p.width, p.height, p.channels.size())));
+}
+
+// `p` must be a partial of the same frame as `ref`; the error names both.
+void check_same_frame(const Partial& p, const Partial& ref) {
+  auto differ = [&](const std::string& what, const std::string& mine, const std::string& theirs) {
+    fail(p.source, what + " " + mine + " differs from " + ref.source + "'s " + theirs +
+                       ": not partials of one frame");
+  };
+  if (p.width != ref.width || p.height != ref.height)
+    differ("image size", std::to_string(p.width) + "x" + std::to_string(p.height),
+           std::to_string(ref.width) + "x" + std::to_string(ref.height));
+  if (p.channels != ref.channels) {
+    auto join = [](const std::vector<std::string>& v) {
+      std::string s;
+      for (const auto& c : v) s += (s.empty() ? "" : ",") + c;
+      return s;
+    };
+    differ("channel list", join(p.channels), join(ref.channels));
+  }
+  if (p.seed != ref.seed) differ("seed", std::to_string(p.seed), std::to_string(ref.seed));
+  if (p.scene_hash != ref.scene_hash)
+    differ("scene hash", p.scene_hash, ref.scene_hash + " (a different scene)");
+  if (p.renderer_version != ref.renderer_version)
+    differ("renderer version", p.renderer_version, ref.renderer_version);
+  if (p.frame_spp != ref.frame_spp)
+    differ("frame spp", std::to_string(p.frame_spp), std::to_string(ref.frame_spp));
+  std::set<std::string> keys;
+  for (const auto& [k, v] : p.metadata) keys.insert(k);
+  for (const auto& [k, v] : ref.metadata) keys.insert(k);
+  for (const std::string& k : keys) {
+    const auto a = p.metadata.find(k), b = ref.metadata.find(k);
+    const std::string va = a == p.metadata.end() ? "(absent)" : "'" + a->second + "'";
+    const std::string vb = b == ref.metadata.end() ? "(absent)" : "'" + b->second + "'";
+    if (va != vb) differ("metadata " + k, va, vb);
+  }
+}
+
+// The partials in sample order; their ranges must tile one contiguous range
+// [begin, end) without overlap.
+std::vector<size_t> tiling_order(const std::vector<Partial>& parts) {
+  std::vector<size_t> order(parts.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return parts[a].sample_begin < parts[b].sample_begin;
+  });
+  for (size_t i = 1; i < order.size(); ++i) {
+    const Partial& prev = parts[order[i - 1]];
+    const Partial& next = parts[order[i]];
+    if (next.sample_begin < prev.sample_end)
+      throw PartialError(next.source + ": sample range " + range_text(next) + " overlaps " +
+                         prev.source + "'s " + range_text(prev) +
+                         ": a sample would be counted twice");
+    if (next.sample_begin > prev.sample_end)
+      throw PartialError("samples [" + std::to_string(prev.sample_end) + ", " +
+                         std::to_string(next.sample_begin) + ") are missing between " +
+                         prev.source + " " + range_text(prev) + " and " + next.source + " " +
+                         range_text(next) + ": the ranges must tile one contiguous range");
+  }
+  return order;
 }
 
 }  // namespace
@@ -226,188 +363,37 @@ Partial read_partial(const fs::path& path) {
   const std::string src = path.string();
   std::ifstream f(path, std::ios::binary);
   if (!f) fail(src, "cannot open for reading");
-
-  char magic[kMagicSize] = {};
-  f.read(magic, std::streamsize(kMagicSize));
-  if (size_t(f.gcount()) != kMagicSize || std::memcmp(magic, kMagic, kMagicSize) != 0)
-    fail(src, "not a vesper partial render (bad magic: expected the first line 'VESPER-PARTIAL')");
-
-  std::string line;
-  if (!std::getline(f, line) || f.eof()) fail(src, "truncated: the header line is incomplete");
-  if (line.size() > kMaxHeaderBytes) fail(src, "header line longer than 16 MiB");
-  json j;
-  try {
-    j = json::parse(line);
-  } catch (const json::exception& e) {
-    fail(src, std::string("header is not valid JSON: ") + e.what());
-  }
-  if (!j.is_object()) fail(src, "header: expected a JSON object");
-
-  const Header h(j, src);
-  h.only_keys(
-      {"format", "width", "height", "channels", "sample_begin", "sample_end", "frame_spp", "seed",
-       "scene_hash", "renderer_version", "nonfinite_samples", "render_seconds", "metadata", "sums"},
-      "header");
-  const std::string format = h.string("format");
-  if (format != kFormat)
-    fail(src, "header: unsupported format '" + format + "' (this build reads " + kFormat + ")");
-
+  const std::string line = read_header_line(f, src);
   Partial p;
+  SumsLayout layout;
+  try {
+    const std::string label = src + " header";
+    p = parse_header(parse_json(line, label), label, layout);
+  } catch (const JsonError& e) {
+    throw PartialError(e.what());
+  }
   p.source = src;
-  p.width = int(h.integer("width", 1, kMaxDimension));
-  p.height = int(h.integer("height", 1, kMaxDimension));
-  const json& channels = h.get("channels", json::value_t::array, "an array of channel names");
-  std::set<std::string> seen;
-  for (const json& c : channels) {
-    if (!c.is_string() || c.get<std::string>().empty())
-      fail(src, "header: key 'channels': expected non-empty strings, got " + c.dump());
-    if (!seen.insert(c.get<std::string>()).second)
-      fail(src, "header: key 'channels': duplicate channel '" + c.get<std::string>() + "'");
-    p.channels.push_back(c.get<std::string>());
-  }
-  if (p.channels.empty()) fail(src, "header: key 'channels': no channels");
-  p.sample_begin = int(h.integer("sample_begin", 0, std::numeric_limits<int>::max()));
-  p.sample_end = int(h.integer("sample_end", 0, std::numeric_limits<int>::max()));
-  if (p.sample_end <= p.sample_begin) fail(src, "header: empty sample range " + range_text(p));
-  if (int64_t(p.sample_end) - p.sample_begin > kMaxExactSamples)
-    fail(src, "header: sample range " + range_text(p) + " longer than " +
-                  std::to_string(kMaxExactSamples) + " samples");
-  p.frame_spp = int(h.integer("frame_spp", 0, std::numeric_limits<int>::max()));
-  p.seed = h.unsigned_integer("seed");
-  p.scene_hash = h.string("scene_hash");
-  p.renderer_version = h.string("renderer_version");
-  p.nonfinite_samples = h.unsigned_integer("nonfinite_samples");
-  p.render_seconds = h.get("render_seconds", json::value_t::number_float, "a number").get<double>();
-  const json& meta = h.get("metadata", json::value_t::object, "an object of strings");
-  for (const auto& [k, v] : meta.items()) {
-    if (!v.is_string())
-      fail(src, "header: metadata key '" + k + "': expected a string, got " + v.dump());
-    if (is_range_key(k))
-      fail(src, "header: metadata key '" + k + "' is a header field, not metadata");
-    p.metadata[k] = v.get<std::string>();
-  }
-
-  const json& sums = h.get("sums", json::value_t::object, "an object");
-  const Header s(sums, src);
-  s.only_keys({"encoding", "compression", "bytes", "compressed_bytes", "crc32"}, "header: sums");
-  if (s.string("encoding") != kEncoding)
-    fail(src, "header: sums: unsupported encoding '" + s.string("encoding") + "' (expected " +
-                  kEncoding + ")");
-  if (s.string("compression") != "zlib")
-    fail(src,
-         "header: sums: unsupported compression '" + s.string("compression") + "' (expected zlib)");
-  const uint64_t bytes = s.unsigned_integer("bytes");
-  const uint64_t compressed_bytes = s.unsigned_integer("compressed_bytes");
-  const uint64_t crc = s.unsigned_integer("crc32");
   const size_t count = sum_count(p.width, p.height, p.channels.size());
-  if (bytes != uint64_t(count) * 16)
-    fail(src, "size mismatch: header says " + std::to_string(bytes) + " bytes of sums, but " +
-                  std::to_string(p.width) + "x" + std::to_string(p.height) + " pixels x " +
-                  std::to_string(p.channels.size()) +
+  if (layout.bytes != uint64_t(count) * 16)
+    fail(src, "size mismatch: header says " + std::to_string(layout.bytes) +
+                  " bytes of sums, but " + std::to_string(p.width) + "x" +
+                  std::to_string(p.height) + " pixels x " + std::to_string(p.channels.size()) +
                   " channels x 16 bytes = " + std::to_string(count * 16));
-
-  // The rest of the file is the compressed sums, exactly.
-  const std::streampos body = f.tellg();
-  f.seekg(0, std::ios::end);
-  const uint64_t available = uint64_t(f.tellg() - body);
-  if (available < compressed_bytes)
-    fail(src, "truncated: expected " + std::to_string(compressed_bytes) +
-                  " bytes of compressed sums, found " + std::to_string(available));
-  if (available > compressed_bytes)
-    fail(src, "size mismatch: " + std::to_string(available - compressed_bytes) +
-                  " unexpected bytes after the compressed sums");
-  std::vector<unsigned char> compressed(compressed_bytes);
-  f.seekg(body);
-  f.read(reinterpret_cast<char*>(compressed.data()), std::streamsize(compressed.size()));
-  if (uint64_t(f.gcount()) != compressed_bytes) fail(src, "read error in the compressed sums");
-
-  std::vector<unsigned char> raw(bytes);
-  uLongf raw_size = uLongf(bytes);
-  const int zr = uncompress(raw.data(), &raw_size, compressed.data(), uLong(compressed.size()));
-  if (zr != Z_OK || raw_size != bytes)
-    fail(src, "corrupt: the compressed sums do not decompress to " + std::to_string(bytes) +
-                  " bytes (zlib: " + (zr == Z_OK ? "short output" : zError(zr)) + ")");
-  if (crc_of(raw) != crc) fail(src, "corrupt: CRC-32 of the sums does not match the header");
+  const std::vector<unsigned char> raw =
+      decompress_sums(read_compressed_sums(f, src, layout.compressed_bytes), layout, src);
   p.sums = decode_sums(raw.data(), count);
   return p;
 }
 
-namespace {
-
-// Throws unless every partial has a non-empty range and is of the first one's
-// frame: size, channels, seed, scene, renderer version, frame spp, metadata.
-void check_one_frame(const std::vector<Partial>& parts) {
+LayeredImage merge_partials(const std::vector<Partial>& parts) {
+  if (parts.empty()) throw PartialError("merge: no partial renders given");
   const Partial& ref = parts.front();
-  auto differ = [&](const Partial& p, const std::string& what, const std::string& mine,
-                    const std::string& theirs) {
-    fail(p.source, what + " " + mine + " differs from " + ref.source + "'s " + theirs +
-                       ": not partials of one frame");
-  };
   for (const Partial& p : parts) {
     check_sums_size(p);
     if (p.sample_end <= p.sample_begin) fail(p.source, "empty sample range " + range_text(p));
-    if (&p == &ref) continue;
-    if (p.width != ref.width || p.height != ref.height)
-      differ(p, "image size", std::to_string(p.width) + "x" + std::to_string(p.height),
-             std::to_string(ref.width) + "x" + std::to_string(ref.height));
-    if (p.channels != ref.channels) {
-      auto join = [](const std::vector<std::string>& v) {
-        std::string s;
-        for (const auto& c : v) s += (s.empty() ? "" : ",") + c;
-        return s;
-      };
-      differ(p, "channel list", join(p.channels), join(ref.channels));
-    }
-    if (p.seed != ref.seed) differ(p, "seed", std::to_string(p.seed), std::to_string(ref.seed));
-    if (p.scene_hash != ref.scene_hash)
-      differ(p, "scene hash", p.scene_hash, ref.scene_hash + " (a different scene)");
-    if (p.renderer_version != ref.renderer_version)
-      differ(p, "renderer version", p.renderer_version, ref.renderer_version);
-    if (p.frame_spp != ref.frame_spp)
-      differ(p, "frame spp", std::to_string(p.frame_spp), std::to_string(ref.frame_spp));
-    std::set<std::string> keys;
-    for (const auto& [k, v] : p.metadata) keys.insert(k);
-    for (const auto& [k, v] : ref.metadata) keys.insert(k);
-    for (const std::string& k : keys) {
-      const auto a = p.metadata.find(k), b = ref.metadata.find(k);
-      const std::string va = a == p.metadata.end() ? "(absent)" : "'" + a->second + "'";
-      const std::string vb = b == ref.metadata.end() ? "(absent)" : "'" + b->second + "'";
-      if (va != vb) differ(p, "metadata " + k, va, vb);
-    }
+    if (&p != &ref) check_same_frame(p, ref);
   }
-}
-
-// Indices of the partials by sample_begin; throws unless their ranges tile
-// one contiguous range [begin, end) without overlap.
-std::vector<size_t> tiling_order(const std::vector<Partial>& parts) {
-  std::vector<size_t> order(parts.size());
-  std::iota(order.begin(), order.end(), size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return parts[a].sample_begin < parts[b].sample_begin;
-  });
-  for (size_t i = 1; i < order.size(); ++i) {
-    const Partial& prev = parts[order[i - 1]];
-    const Partial& next = parts[order[i]];
-    if (next.sample_begin < prev.sample_end)
-      throw PartialError(next.source + ": sample range " + range_text(next) + " overlaps " +
-                         prev.source + "'s " + range_text(prev) +
-                         ": a sample would be counted twice");
-    if (next.sample_begin > prev.sample_end)
-      throw PartialError("samples [" + std::to_string(prev.sample_end) + ", " +
-                         std::to_string(next.sample_begin) + ") are missing between " +
-                         prev.source + " " + range_text(prev) + " and " + next.source + " " +
-                         range_text(next) + ": the ranges must tile one contiguous range");
-  }
-  return order;
-}
-
-}  // namespace
-
-LayeredImage merge_partials(const std::vector<Partial>& parts) {
-  if (parts.empty()) throw PartialError("merge: no partial renders given");
-  check_one_frame(parts);
   const std::vector<size_t> order = tiling_order(parts);
-  const Partial& ref = parts.front();
   const int begin = parts[order.front()].sample_begin;
   const int end = parts[order.back()].sample_end;
   const int64_t count = int64_t(end) - begin;

@@ -4,13 +4,12 @@
 #include "common/json_reader.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "common/json_parse.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper {
 namespace {
@@ -128,14 +127,11 @@ TEST(ParseJson, DuplicateKeysAreRejectedAtTheirPath) {
 }
 
 TEST(ParseJson, FilesThatCannotBeReadAreNamed) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("vesper-json-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const test::TempDir dir("common");
   EXPECT_EQ(error_of([&] { read_json_file(dir / "none.json", "the recipe file"); }),
             (dir / "none.json").string() + ": cannot open the recipe file");
   std::ofstream(dir / "ok.json") << R"({"k": [1, 2]})";
   EXPECT_EQ(read_json_file(dir / "ok.json", "x")["k"][1], 2);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

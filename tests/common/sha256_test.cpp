@@ -3,14 +3,13 @@
 #include "common/sha256.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <fstream>
 #include <set>
 #include <string>
 
 #include "common/secret_token.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper {
 namespace {
@@ -38,16 +37,13 @@ TEST(Sha256, StreamingEqualsOneShot) {
 }
 
 TEST(Sha256, FilesAreHashedInChunks) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("vesper-sha256-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const test::TempDir dir("common");
   const std::string million(1000000, 'a');  // several 64 KiB reads
   std::ofstream(dir / "a", std::ios::binary) << million;
   std::ofstream(dir / "empty", std::ios::binary);
   EXPECT_EQ(sha256_file(dir / "a"), kMillionA);
   EXPECT_EQ(sha256_file(dir / "empty"), kEmpty);
   EXPECT_EQ(sha256_file(dir / "missing"), std::nullopt);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(Sha256, OnlyLowerCaseHexOf64DigitsIsAHash) {

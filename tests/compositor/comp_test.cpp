@@ -285,7 +285,8 @@ TEST(Recipe, ValidationErrorsNameTheJsonPath) {
   EXPECT_NE(error_of([&] { load_recipe(f.dir / "nope.json"); }).find("nope.json"),
             std::string::npos);
   write_text(f.dir / "bad.json", "{\"inputs\": ");
-  EXPECT_NE(error_of([&] { load_recipe(f.dir / "bad.json"); }).find("not valid JSON"),
+  // The common JSON parser's wording (as for scenes), with the position.
+  EXPECT_NE(error_of([&] { load_recipe(f.dir / "bad.json"); }).find("invalid JSON at line 1"),
             std::string::npos);
 }
 

@@ -1,4 +1,4 @@
-#include "jobs/child_process.h"
+#include "process/child_process.h"
 
 #include <fcntl.h>
 #include <poll.h>

@@ -1,0 +1,60 @@
+// The worker's child render command line: built from the task and the worker
+// config only (the scene file is never parsed for it).
+#include "worker/render_command.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace vesper::worker_detail {
+namespace {
+
+protocol::LeaseResponse lease(int frame, int spp, int begin, int end) {
+  protocol::LeaseResponse t;
+  t.spp = spp;
+  t.task.frame = frame;
+  t.task.sample_begin = begin;
+  t.task.sample_end = end;
+  return t;
+}
+
+WorkerConfig config(int threads) {
+  WorkerConfig c;
+  c.vesper_binary = "/opt/vesper/bin/vesper";
+  c.render_threads = threads;
+  return c;
+}
+
+// A whole frame renders an EXR; a sample range a partial (--partial), and the
+// worker's --threads are passed on.
+TEST(RenderCommand, FollowsTheTaskAndTheWorkerConfig) {
+  struct Case {
+    protocol::LeaseResponse lease;
+    int threads;
+    const char *extension, *argv;
+  };
+  const Case cases[] = {
+      {lease(7, 16, 0, 16), 0, ".exr",
+       "/opt/vesper/bin/vesper render s.json -o out --spp 16 --sample-begin 0 --sample-end 16 "
+       "--frame 7"},
+      {lease(3, 16, 4, 8), 2, ".vpartial",
+       "/opt/vesper/bin/vesper render s.json -o out --spp 16 --sample-begin 4 --sample-end 8 "
+       "--frame 3 --partial --threads 2"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(render_output_extension(c.lease), c.extension);
+    EXPECT_EQ(command_line(render_command(c.lease, config(c.threads), "s.json", "out")), c.argv);
+  }
+}
+
+TEST(RenderCommand, LeavesTheSeedToTheSceneAndTheProgressLinesOn) {
+  // The renderer takes the scene's render.seed itself; -q would silence the
+  // progress lines the heartbeat reports.
+  const auto argv = render_command(lease(1, 4, 0, 4), config(1), "s.json", "r.exr");
+  EXPECT_EQ(std::count(argv.begin(), argv.end(), "--seed"), 0);
+  EXPECT_EQ(std::count(argv.begin(), argv.end(), "-q"), 0);
+  EXPECT_EQ(command_line({"vesper", "render", "s.json"}), "vesper render s.json");
+}
+
+}  // namespace
+}  // namespace vesper::worker_detail

@@ -1,0 +1,30 @@
+#include "worker/blob_cache.h"
+
+#include "common/sha256.h"
+
+namespace fs = std::filesystem;
+
+namespace vesper::worker_detail {
+
+std::string BlobCache::fetch(const std::string& blob, const fs::path& file, const std::string& what,
+                             const std::string& unique) {
+  // Checked before the name becomes a path.
+  if (!is_sha256_hex(blob)) return "the lease names a malformed " + what + " hash '" + blob + "'";
+  if (sha256_file(file) == blob) return {};
+  const fs::path part = dir_ / "tmp" / (blob + "." + unique + ".part");
+  const HttpResponse g = api_.download_blob(blob, part);
+  std::string problem;
+  std::error_code ec;
+  if (g.status != 200)
+    problem = "download of " + what + " blob " + blob + " failed: " + describe(g);
+  else if (const auto got = sha256_file(part); got != blob)
+    problem = "downloaded " + what + " blob does not match its hash: expected " + blob + ", got " +
+              got.value_or("(unreadable)");
+  else
+    fs::rename(part, file, ec);
+  if (problem.empty() && ec) problem = "cannot store " + file.string() + ": " + ec.message();
+  fs::remove(part, ec);
+  return problem;
+}
+
+}  // namespace vesper::worker_detail

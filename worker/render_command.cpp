@@ -1,0 +1,44 @@
+#include "worker/render_command.h"
+
+namespace vesper::worker_detail {
+
+bool renders_partial(const protocol::LeaseResponse& lease) {
+  return lease.task.sample_begin != 0 || lease.task.sample_end != lease.spp;
+}
+
+std::vector<std::string> render_command(const protocol::LeaseResponse& lease,
+                                        const WorkerConfig& config,
+                                        const std::filesystem::path& scene_file,
+                                        const std::filesystem::path& output) {
+  std::vector<std::string> argv = {config.vesper_binary.string(),
+                                   "render",
+                                   scene_file.string(),
+                                   "-o",
+                                   output.string(),
+                                   "--spp",
+                                   std::to_string(lease.spp),
+                                   "--sample-begin",
+                                   std::to_string(lease.task.sample_begin),
+                                   "--sample-end",
+                                   std::to_string(lease.task.sample_end),
+                                   "--frame",
+                                   std::to_string(lease.task.frame)};
+  if (renders_partial(lease)) argv.push_back("--partial");
+  if (config.render_threads > 0) {
+    argv.push_back("--threads");
+    argv.push_back(std::to_string(config.render_threads));
+  }
+  return argv;
+}
+
+std::string render_output_extension(const protocol::LeaseResponse& lease) {
+  return renders_partial(lease) ? ".vpartial" : ".exr";
+}
+
+std::string command_line(const std::vector<std::string>& argv) {
+  std::string line;
+  for (const auto& a : argv) line += (line.empty() ? "" : " ") + a;
+  return line;
+}
+
+}  // namespace vesper::worker_detail
