@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/typo_distance.h"
+
 namespace vesper {
 namespace {
 
@@ -12,22 +14,6 @@ std::string format_number(double v) {
   s.precision(10);
   s << v;
   return s.str();
-}
-
-// Levenshtein distance, for "did you mean" hints on unknown keys.
-size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diag = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1] ? 1 : 0)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
 }
 
 std::string quoted_list(std::span<const std::string_view> options) {
@@ -300,7 +286,7 @@ void JsonReader::finish() const {
     size_t best_distance = 3;  // hint only for near misses
     for (size_t i = 0; i < known_keys_.size(); ++i) {
       message += (i > 0 ? ", " : "") + known_keys_[i];
-      const size_t d = edit_distance(key, known_keys_[i]);
+      const size_t d = typo_distance(key, known_keys_[i]);
       if (d < best_distance) best_distance = d, best = known_keys_[i];
     }
     message += ")";
