@@ -5,6 +5,10 @@
 //   optional(key, &T::m): left out when it equals its empty value (T{}'s
 //     "", 0, empty list, or an unset std::optional); when absent on reading
 //     the member keeps its default.
+// Not nlohmann's NLOHMANN_DEFINE_TYPE_* macros: they name keys after members
+// (ours come from fields.h, once) and always write every key (the wire
+// format leaves empty optional keys out). Not NLOHMANN_JSON_SERIALIZE_ENUM:
+// it maps an unknown value silently to the first one; read_enum refuses it.
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <tuple>
