@@ -91,7 +91,17 @@ int run_render(const RenderCommandOptions& o) {
   ro.sample_begin = o.sample_begin;
   ro.sample_end = o.sample_end;
   ro.keep_sums = o.partial;
-  const int spp = o.spp.value_or(desc.render.spp);
+  ro.noise_target = o.sampling.noise_target;
+  ro.time_limit = o.sampling.time_limit;
+  ro.min_spp = o.sampling.min_spp;
+  ro.max_spp = o.sampling.max_spp;
+  try {
+    check_sampling_options(desc.render, ro);
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("{}: {}", o.scene, e.what());
+    return 2;
+  }
+  const int spp = frame_spp(desc.render, ro);
   const auto range = sample_range(o, spp);
   if (!range) return 2;
 
@@ -107,7 +117,7 @@ int run_render(const RenderCommandOptions& o) {
 
   try {
     if (o.partial)
-      write_partial(make_partial(result.image, std::move(result.sums), spp, out_path.string()),
+      write_partial(make_partial(result.image, std::move(result.film), spp, out_path.string()),
                     out_path);
     else
       output->write(result.image, out_path);
