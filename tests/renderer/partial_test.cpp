@@ -77,14 +77,14 @@ TEST(ExactSum, SumsDoNotDependOnTheOrder) {
 // ---------------------------------------------------------------- frames
 
 // The night room (fog, light groups, path layers, the rays_dense variant) at
-// 32x24 with AOVs, 13 spp.
+// 32x24 with AOVs (the variance and spp too), 13 spp.
 SceneDescription small_night_room() {
   SceneDescription d = load_scene(fs::path(VESPER_SOURCE_DIR) / "scenes/night-room/scene.json");
   d.film.width = 32;
   d.film.height = 24;
   d.render.spp = 13;
-  d.render.aovs = {Aov::Albedo,        Aov::Normal,         Aov::Depth,
-                   Aov::DiffuseDirect, Aov::VolumeIndirect, Aov::Emission};
+  d.render.aovs = {Aov::Albedo,         Aov::Normal,   Aov::Depth,    Aov::DiffuseDirect,
+                   Aov::VolumeIndirect, Aov::Emission, Aov::Variance, Aov::Spp};
   return d;
 }
 
@@ -120,7 +120,8 @@ TEST_F(PartialFiles, FourUnevenRangesMergeBitwiseToTheSingleRender) {
   const FrameResult full = render_frame(d, full_options);
   ASSERT_EQ(full.passes, 2);  // beauty + the rays_dense variant
   for (const char* ch : {"R", "A", "albedo.R", "normal.X", "depth.Z", "diffuse_direct.G", "fog.R",
-                         "fog.A", "candles.B", "lightrays.R", "surfaces.R", "rays_dense.R"})
+                         "fog.A", "candles.B", "lightrays.R", "surfaces.R", "rays_dense.R",
+                         "variance.R", "variance.B", "spp"})
     ASSERT_GE(full.image.channel_index(ch), 0) << ch;
   ASSERT_EQ(full.film.sums.size(), full.image.pixels.size());
   // Asking for the sums does not change the image.
