@@ -106,8 +106,10 @@ int run_render(const RenderCommandOptions& o) {
   if (!range) return 2;
 
   if (!o.quiet)
-    spdlog::info("{}: {}x{}, {} spp, {} shapes, {} lights, {} media, {} layers", o.scene,
-                 desc.film.width, desc.film.height, range->second - range->first,
+    spdlog::info("{}: {}x{}, {}{} spp, {} shapes, {} lights, {} media, {} layers", o.scene,
+                 desc.film.width, desc.film.height,
+                 ro.noise_target || desc.render.noise_target ? "up to " : "",
+                 range->second - range->first,
                  desc.shapes.size(), desc.lights.size(), desc.media.size(), desc.layers.size());
   Progress progress("render");
   if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
@@ -131,6 +133,14 @@ int run_render(const RenderCommandOptions& o) {
   if (!o.quiet)
     spdlog::info("wrote {} ({:.2f} s, {:.1f} Mrays/s)", out_path.string(), result.stats.seconds,
                  mrays);
+  if (!o.quiet && result.image.metadata.count(metadata_key::kStopReason))
+    spdlog::info("sampling stopped by {} after {} passes: {} spp on average, noise {}",
+                 result.image.metadata.at(metadata_key::kStopReason),
+                 result.image.metadata.at(metadata_key::kSamplingPasses),
+                 result.image.metadata.at(metadata_key::kSppMean),
+                 result.image.metadata.count(metadata_key::kNoiseReached)
+                     ? result.image.metadata.at(metadata_key::kNoiseReached)
+                     : "not measured");
   std::printf("%s\n", out_path.string().c_str());
   return 0;
 }
