@@ -153,6 +153,25 @@ int run_retry(const JobCommandOptions& options);
 int run_logs(const JobCommandOptions& options);
 int run_fetch(const JobCommandOptions& options);
 
+// vesper regress: re-render a suite, compare with goldens without alarms
+// for Monte Carlo noise, report (docs/regression.md). Exit 0 nothing
+// regressed, 1 something regressed or could not be compared, 2 bad input.
+struct RegressCommandOptions {
+  std::string suite;
+  std::string goldens;
+  bool update_goldens = false;
+  bool local = false;
+  std::optional<std::string> server;
+  std::optional<std::string> report;
+  std::optional<unsigned long long> seed;
+  std::optional<std::string> history;
+  std::optional<std::string> renderer;  // a `vesper render`-compatible program; default: this one
+  int repeats = 3;                      // renders per scene, for the timing
+  std::optional<int> threads;
+  bool quiet = false;
+};
+int run_regress(const RegressCommandOptions& options);
+
 // vesper up: a local server and N workers; submit, wait, fetch, composite.
 struct UpCommandOptions {
   std::string config;

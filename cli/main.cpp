@@ -326,6 +326,33 @@ void add_up(CLI::App& app, Dispatch& dispatch) {
   dispatch.on(u, [o] { return run_up(*o); });
 }
 
+void add_regress(CLI::App& app, Dispatch& dispatch) {
+  auto o = std::make_shared<RegressCommandOptions>();
+  auto* r = app.add_subcommand(
+      "regress", "Re-render a regression suite and compare it with its goldens, noise-aware");
+  r->add_option("suite", o->suite, "Suite file (vesper-suite/1; docs/regression.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  r->add_option("--goldens", o->goldens, "Folder of the golden frames")->required();
+  r->add_flag("--update-goldens", o->update_goldens,
+              "Render and write the goldens; compare nothing");
+  auto* local = r->add_flag("--local", o->local, "Render here, in child processes (the default)");
+  r->add_option("--server", o->server, "Render on the farm at this URL")->excludes(local);
+  r->add_option("--report", o->report, "Folder for report.json and index.html");
+  r->add_option("--seed", o->seed, "Random seed of every render (default: the scenes')")
+      ->check(at_least(0));
+  r->add_option("--history", o->history, "SQLite history database, for trends");
+  r->add_option("--renderer", o->renderer,
+                "A `vesper render`-compatible program to run instead of this binary")
+      ->check(CLI::ExistingFile);
+  r->add_option("--repeats", o->repeats, "Renders per scene, for the timing (default 3)")
+      ->check(CLI::Range(1, 100));
+  r->add_option("--threads", o->threads, "Threads per render (default: all cores)")
+      ->check(at_least(1));
+  add_quiet(r, &o->quiet);
+  dispatch.on(r, [o] { return run_regress(*o); });
+}
+
 // The deepest subcommand the command line reached (`vesper vdb cloud` -> cloud).
 const CLI::App* innermost(const CLI::App* app) {
   while (!app->get_subcommands().empty()) app = app->get_subcommands().front();
@@ -383,6 +410,7 @@ int main(int argc, char** argv) {
   add_submit(app, dispatch);
   add_job_commands(app, dispatch);
   add_up(app, dispatch);
+  add_regress(app, dispatch);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

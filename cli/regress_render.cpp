@@ -1,0 +1,127 @@
+#include "cli/regress_render.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "compositor/histogram.h"
+#include "compositor/layer_mix.h"
+#include "process/child_process.h"
+#include "regress/median.h"
+#include "renderer/output/exr_io.h"
+#include "renderer/output/metadata_keys.h"
+
+namespace vesper::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> render_argv(const regress::SuiteScene& scene, int frame,
+                                     const fs::path& out, const RegressRenderSettings& s) {
+  std::vector<std::string> argv{s.renderer.string(),
+                                "render",
+                                scene.scene.string(),
+                                "-o",
+                                out.string(),
+                                "--aov",
+                                "variance",
+                                "--layer-variance",
+                                "--frame",
+                                std::to_string(frame),
+                                "-q"};
+  if (scene.spp) argv.insert(argv.end(), {"--spp", std::to_string(*scene.spp)});
+  if (scene.noise_target) {
+    char target[32];
+    std::snprintf(target, sizeof target, "%.17g", *scene.noise_target);
+    argv.insert(argv.end(), {"--noise-target", target});
+  }
+  if (s.seed) argv.insert(argv.end(), {"--seed", std::to_string(*s.seed)});
+  if (s.threads) argv.insert(argv.end(), {"--threads", std::to_string(*s.threads)});
+  return argv;
+}
+
+void write_atomically(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream f(tmp, std::ios::trunc);
+    f << text;
+    if (!f.flush()) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error("cannot write " + path.string() + ": " + ec.message());
+}
+
+}  // namespace
+
+SuiteRender render_suite_frame(const regress::SuiteScene& scene, int frame,
+                               const std::string& label, const RegressRenderSettings& settings) {
+  SuiteRender r;
+  r.label = label;
+  r.exr = settings.out_dir / (label + ".exr");
+  for (int i = 0; i < std::max(1, settings.repeats); ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      ChildProcess child(render_argv(scene, frame, r.exr, settings));
+      while (!child.wait_for(3600)) {
+      }
+      if (child.exit_code() != 0) {
+        r.error = settings.renderer.filename().string() + " render " + scene.scene.string() +
+                  " failed (" + child.describe_status() + "): " + child.stderr_tail();
+        return r;
+      }
+    } catch (const std::runtime_error& e) {
+      r.error = e.what();
+      return r;
+    }
+    r.seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return r;
+}
+
+fs::path golden_image(const fs::path& dir, const std::string& label) {
+  return dir / (label + ".exr");
+}
+
+fs::path golden_sidecar(const fs::path& dir, const std::string& label) {
+  return dir / (label + ".json");
+}
+
+void write_golden(const SuiteRender& render, const fs::path& dir) {
+  const LayeredImage image = read_exr(render.exr);
+  auto meta = [&](const char* key) {
+    const auto it = image.metadata.find(key);
+    return it == image.metadata.end() ? std::string() : it->second;
+  };
+  const Histogram histogram =
+      log2_histogram(extract_layer(image, "beauty", render.exr.string()), LumaWeights::Rec709);
+  nlohmann::json sidecar{{"format", "vesper-golden/1"},
+                         {"renderer_version", meta(metadata_key::kRendererVersion)},
+                         {"scene_hash", meta(metadata_key::kSceneHash)},
+                         {"spp", meta(metadata_key::kSpp)},
+                         {"seconds", regress::median(render.seconds)},
+                         {"seconds_repeats", render.seconds},
+                         {"histogram", histogram_to_json(histogram)}};
+  std::error_code ec;
+  fs::rename(render.exr, golden_image(dir, render.label), ec);
+  if (ec) {  // another file system: copy, then rename into place
+    const fs::path tmp = golden_image(dir, render.label).string() + ".tmp";
+    fs::copy_file(render.exr, tmp, fs::copy_options::overwrite_existing);
+    fs::rename(tmp, golden_image(dir, render.label));
+  }
+  write_atomically(golden_sidecar(dir, render.label), sidecar.dump(2) + "\n");
+}
+
+std::optional<double> golden_seconds(const fs::path& dir, const std::string& label) {
+  std::ifstream f(golden_sidecar(dir, label));
+  if (!f) return std::nullopt;
+  const nlohmann::json j = nlohmann::json::parse(f, nullptr, /*allow_exceptions=*/false);
+  if (!j.is_object() || !j.contains("seconds") || !j["seconds"].is_number()) return std::nullopt;
+  return j["seconds"].get<double>();
+}
+
+}  // namespace vesper::cli
