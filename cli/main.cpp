@@ -111,6 +111,10 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
       "diffuse_indirect, specular_direct, specular_indirect, volume_direct, volume_indirect, "
       "variance (of the pixel mean), spp (samples taken)");
   add_sampling_flags(r, o->sampling);
+  r->add_option("--scale", o->scale,
+                "Render the film at this fraction of its size (e.g. 0.25 for previews and "
+                "regression suites); the camera is unchanged")
+      ->check(greater_than_zero());
   r->add_flag("--layer-variance", o->layer_variance,
               "Also write <layer>.variance.R/G/B for every RGB AOV and layer (costs 192 bytes "
               "per pixel and layer while rendering)");

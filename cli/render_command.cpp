@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cmath>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -61,6 +63,15 @@ std::optional<std::pair<int, int>> sample_range(const RenderCommandOptions& o, i
   return std::pair{begin, end};
 }
 
+// --scale: the film's size times `scale`, at least 1x1 and at most 65536 a side.
+void scale_film(FilmDesc& film, double scale) {
+  auto scaled = [&](int n) {
+    return int(std::clamp(std::lround(double(n) * scale), 1L, 65536L));
+  };
+  film.width = scaled(film.width);
+  film.height = scaled(film.height);
+}
+
 }  // namespace
 
 int run_render(const RenderCommandOptions& o) {
@@ -72,6 +83,7 @@ int run_render(const RenderCommandOptions& o) {
   try {  // every usage error before any work: flags, scene, output path
     if (o.aovs) ro.aovs = parse_aovs(*o.aovs);
     desc = load_scene(o.scene);
+    if (o.scale) scale_film(desc.film, *o.scale);
     output = std::make_unique<FrameOutput>(o.output, o.partial);
     out_path = output->path(o.frame ? std::optional<long>(*o.frame) : std::nullopt);
   } catch (const std::invalid_argument& e) {  // --aov
