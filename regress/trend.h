@@ -23,6 +23,8 @@ struct TrendPoint {
   double histogram_distance = 0;  // the largest over the layers (stops)
 };
 
+// One scene's point in the run started at `started_at`.
+TrendPoint trend_point(const SceneResult& scene, const std::string& started_at);
 // The run's own points, one per scene, in the run's scene order.
 std::vector<TrendPoint> trend_points(const RunResult& run);
 
