@@ -60,14 +60,16 @@ std::string histogram_overlay_svg(const Histogram& golden, const Histogram& fres
   const double top = histogram_plot_scale(fn, fg) * 100.0;
   const auto [first, last] = occupied_bins(golden, fresh);
   PlotFrame f;
-  f.x_lo = std::max(golden.lo, std::floor(bin_edge(golden, first)));
-  f.x_hi = std::min(golden.hi, std::ceil(bin_edge(golden, last + 1)));
+  f.x_lo = std::max(golden.lo, std::floor(bin_edge(golden, first) - 0.5));  // half a stop clear
+  f.x_hi = std::min(golden.hi, std::ceil(bin_edge(golden, last + 1) + 0.5));
   const std::vector<double> yt = nice_ticks(0, top > 0 ? top : 1.0, 4);
   f.y_hi = yt.back();
   std::vector<AxisTick> y_ticks, x_ticks;
-  for (double t : yt) y_ticks.push_back({t, format_figure(t, 2) + " %"});
-  for (double t : nice_ticks(f.x_lo, f.x_hi, 8))
-    if (t >= f.x_lo - 1e-9 && t <= f.x_hi + 1e-9) x_ticks.push_back({t, format_figure(t, 2)});
+  for (double t : yt) y_ticks.push_back({t, tick_label(t, yt[1] - yt[0]) + " %"});
+  const std::vector<double> xt = nice_ticks(f.x_lo, f.x_hi, 8);
+  for (double t : xt)
+    if (t >= f.x_lo - 1e-9 && t <= f.x_hi + 1e-9)
+      x_ticks.push_back({t, tick_label(t, xt[1] - xt[0])});
   const std::string description = fmt::format(
       "Luminosity histograms: golden median {} stops, new median {} stops; Wasserstein-1 "
       "distance {} stops",

@@ -34,6 +34,15 @@ std::string html_escape(std::string_view text) {
   return out;
 }
 
+std::string trimmed_fixed(double value, int decimals) {
+  std::string s = fmt::format("{:.{}f}", value, std::max(0, decimals));
+  if (s.find('.') != std::string::npos) {
+    while (s.back() == '0') s.pop_back();
+    if (s.back() == '.') s.pop_back();
+  }
+  return s == "-0" ? "0" : s;
+}
+
 std::string format_figure(double value, int digits) {
   if (!std::isfinite(value)) return "n/a";
   if (value == 0) return "0";
@@ -41,7 +50,7 @@ std::string format_figure(double value, int digits) {
   if (magnitude >= 1e6 || magnitude < 1e-4) return fmt::format("{:.{}g}", value, digits);
   // Decimals so that `digits` significant digits show, none below 1.
   const int decimals = std::max(0, digits - 1 - int(std::floor(std::log10(magnitude))));
-  return fmt::format("{:.{}f}", value, decimals);
+  return trimmed_fixed(value, decimals);
 }
 
 std::string format_percent(double relative, bool sign) {

@@ -68,16 +68,6 @@ std::string all_reasons(const SceneResult& scene) {
   return s.empty() ? "&mdash;" : "<ul>" + s + "</ul>";
 }
 
-std::string timing_cell(const SceneResult& scene) {
-  if (scene.reused) return "reused: not re-rendered";
-  std::string s = html_escape(format_seconds(scene.golden_seconds)) + " &rarr; " +
-                  html_escape(format_seconds(scene.new_seconds));
-  if (scene.golden_seconds > 0 && scene.new_seconds > 0)
-    s +=
-        " (&times;" + html_escape(format_figure(scene.new_seconds / scene.golden_seconds, 3)) + ")";
-  return s;
-}
-
 std::string scenes_table(const RunResult& run) {
   std::string s =
       "<table class=\"scenes\"><caption>Scenes</caption><thead><tr><th scope=\"col\">Verdict</th>"
@@ -89,7 +79,7 @@ std::string scenes_table(const RunResult& run) {
         "<tr class=\"{}\"><td>{}</td><th scope=\"row\"><a href=\"#{}\">{}</a></th><td>{}</td>"
         "<td class=\"num\">{}</td></tr>",
         verdict_class(scene.verdict), verdict_badge(scene.verdict), scene_anchor(i),
-        html_escape(scene.name), all_reasons(scene), timing_cell(scene));
+        html_escape(scene.name), all_reasons(scene), render_time_text(scene));
   }
   return s + "</tbody></table>\n";
 }

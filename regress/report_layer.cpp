@@ -24,7 +24,7 @@ std::string ramp_legend(const std::string& id, std::span<const RampStop> ramp,
     stops += fmt::format("<stop offset=\"{}\" stop-color=\"{}\"/>", svg_number(s.t),
                          css_colour(s.colour));
   std::string s = fmt::format(
-      "<svg class=\"legend-bar\" viewBox=\"0 0 240 44\" width=\"240\" height=\"44\" role=\"img\" "
+      "<svg class=\"legend-bar\" viewBox=\"0 0 300 34\" width=\"300\" height=\"34\" role=\"img\" "
       "aria-label=\"{0}: from {1} to {2}{3}\"><defs><linearGradient id=\"{4}\">{5}"
       "</linearGradient></defs><rect x=\"0\" y=\"2\" width=\"180\" height=\"12\" "
       "fill=\"url(#{4})\" "
@@ -35,7 +35,7 @@ std::string ramp_legend(const std::string& id, std::span<const RampStop> ramp,
   if (!extra_label.empty())
     s += fmt::format(
         "<rect x=\"190\" y=\"2\" width=\"12\" height=\"12\" fill=\"{}\" stroke=\"#8a909a\"/>"
-        "<text x=\"190\" y=\"28\">{}</text>",
+        "<text x=\"206\" y=\"12\">{}</text>",
         extra_colour, html_escape(extra_label));
   return s + "</svg>";
 }
@@ -47,14 +47,17 @@ std::string region_overlay(const LayerResult& layer, int width, int height) {
   std::string s =
       fmt::format("<svg viewBox=\"0 0 {} {}\" preserveAspectRatio=\"none\" aria-hidden=\"true\">",
                   width, height);
-  const double font = std::max(8.0, std::max(width, height) / 18.0);
+  // Labels scale with the picture: readable on a 64 px test render shown
+  // large and on a 2K frame shown small alike.
+  const double font = std::max(width, height) / 32.0;
   for (size_t i = 0; i < layer.worst.size(); ++i) {
     const Region& r = layer.worst[i];
     const std::string box =
         fmt::format("x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"", r.x, r.y, r.width, r.height);
     s += fmt::format("<rect class=\"region-outer\" {0}/><rect class=\"region-inner\" {0}/>", box);
     s += fmt::format("<text class=\"region-label\" x=\"{}\" y=\"{}\" font-size=\"{}\">{}</text>",
-                     svg_number(r.x + 1.5), svg_number(r.y + font * 0.9), svg_number(font), i + 1);
+                     svg_number(r.x + font * 0.3), svg_number(r.y + font * 1.05), svg_number(font),
+                     i + 1);
   }
   return s + "</svg>";
 }

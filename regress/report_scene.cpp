@@ -55,23 +55,16 @@ std::string verdict_explanation(const SceneResult& scene) {
 }
 
 std::string timing_facts(const SceneResult& scene) {
-  std::string s = "<dl class=\"facts\"><dt>Render time</dt><dd>";
+  std::string s = "<dl class=\"facts\"><dt>Render time, golden &rarr; new</dt><dd>";
+  s += render_time_text(scene);
   if (scene.reused) {
-    s += "reused: not re-rendered (the farm reused an identical task; golden " +
-         html_escape(format_seconds(scene.golden_seconds)) + ")";
-  } else {
-    s += html_escape(format_seconds(scene.golden_seconds)) + " golden &rarr; " +
-         html_escape(format_seconds(scene.new_seconds)) + " new";
-    if (scene.golden_seconds > 0 && scene.new_seconds > 0)
-      s += " (&times;" + html_escape(format_figure(scene.new_seconds / scene.golden_seconds, 3)) +
-           ")";
-    if (scene.new_seconds_repeats.size() > 1) {
-      std::string repeats;
-      for (double r : scene.new_seconds_repeats)
-        repeats += (repeats.empty() ? "" : ", ") + format_seconds(r);
-      s += "; median of " + std::to_string(scene.new_seconds_repeats.size()) +
-           " timings: " + html_escape(repeats);
-    }
+    s += " (the farm reused an identical task)";
+  } else if (scene.new_seconds_repeats.size() > 1) {
+    std::string repeats;
+    for (double r : scene.new_seconds_repeats)
+      repeats += (repeats.empty() ? "" : ", ") + format_seconds(r);
+    s += "; new is the median of " + std::to_string(scene.new_seconds_repeats.size()) +
+         " timings: " + html_escape(repeats);
   }
   s += "</dd>";
   auto fact = [&](const char* term, const std::string& value) {
@@ -111,6 +104,16 @@ std::string verdict_class(Verdict v) { return std::string("v-") + verdict_name(v
 std::string verdict_badge(Verdict v, const char* css) {
   return fmt::format("<span class=\"{} {}\"><span aria-hidden=\"true\">{}</span> {}</span>", css,
                      verdict_class(v), verdict_symbol(v), upper(verdict_name(v)));
+}
+
+std::string render_time_text(const SceneResult& scene) {
+  if (scene.reused) return "reused: not re-rendered";
+  auto seconds = [](double s) { return s > 0 ? html_escape(format_seconds(s)) : "unknown"; };
+  std::string s = seconds(scene.golden_seconds) + " &rarr; " + seconds(scene.new_seconds);
+  if (scene.golden_seconds > 0 && scene.new_seconds > 0)
+    s +=
+        " (&times;" + html_escape(format_figure(scene.new_seconds / scene.golden_seconds, 3)) + ")";
+  return s;
 }
 
 std::string scene_anchor(size_t index) { return "scene-" + std::to_string(index); }

@@ -15,6 +15,10 @@ namespace vesper::regress {
 std::string verdict_badge(Verdict v, const char* css = "verdict");
 std::string verdict_class(Verdict v);  // "v-pass", "v-regressed", "v-error"
 
+// "1.2 s &rarr; 1.25 s (&times;1.04)" (golden, new, ratio; "unknown" for a
+// time not measured), or "reused: not re-rendered".
+std::string render_time_text(const SceneResult& scene);
+
 // "scene-<index>": the scene section's id, linked from the summary table.
 std::string scene_anchor(size_t index);
 

@@ -52,7 +52,8 @@ figure { margin: 0; } figcaption { font-size: 0.85rem; color: var(--muted); marg
 .charts { display: flex; flex-wrap: wrap; gap: 10px; }
 svg.chart { max-width: 100%; height: auto; background: #fff; border: 1px solid var(--rule); border-radius: 6px; }
 svg.legend-bar { display: block; margin-top: 4px; max-width: 100%; }
-svg text { font: 11px system-ui, sans-serif; fill: var(--ink); }
+svg.chart text, svg.legend-bar text { font: 11px system-ui, sans-serif; fill: var(--ink); }
+.region-label { font-family: system-ui, sans-serif; }
 svg .chart-title { font-size: 13px; font-weight: 600; }
 svg .axis-title { font-size: 11px; fill: var(--muted); }
 svg .plot-area { fill: #fafbfc; } svg .grid { stroke: #e3e6ea; } svg .axis { stroke: #8a909a; }

@@ -31,18 +31,22 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
       break;
     }
   std::vector<double> ticks;
-  const double first = std::floor(lo / step + 1e-9) * step;
-  for (double t = first; t < hi + step * 0.999; t += step)
-    ticks.push_back(std::fabs(t) < step * 1e-9 ? 0.0 : t);
+  const double first = std::floor(lo / step + 1e-9);
+  for (double i = first; (i - 1) * step < hi - step * 1e-9; i += 1) ticks.push_back(i * step);
   return ticks;
 }
 
-std::string svg_number(double v) {
-  std::string s = fmt::format("{:.2f}", v);
-  while (s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s == "-0" ? "0" : s;
+std::string tick_label(double value, double step) {
+  int decimals = 0;
+  while (decimals < 6) {
+    const double scaled = step * std::pow(10.0, decimals);
+    if (std::fabs(scaled - std::round(scaled)) < 1e-6 * std::max(1.0, scaled)) break;
+    ++decimals;
+  }
+  return trimmed_fixed(value, decimals);
 }
+
+std::string svg_number(double v) { return trimmed_fixed(v, 2); }
 
 std::string svg_open(const PlotFrame& frame, std::string_view id, std::string_view title,
                      std::string_view description) {

@@ -28,6 +28,10 @@ struct PlotFrame {
 // when empty.
 std::vector<double> nice_ticks(double lo, double hi, int target = 5);
 
+// A tick value with the decimals its step needs, trailing zeros dropped
+// ("-2", "-1.75", "0.5"), so float steps never show as 0.6000000000000001.
+std::string tick_label(double value, double step);
+
 // <svg ... role="img" aria-labelledby> with <title> and <desc>; close with
 // "</svg>". No xmlns: inline SVG in HTML needs none, and the page holds no
 // http(s) URL at all.

@@ -149,7 +149,7 @@ std::string trend_chart_svg(const std::vector<TrendPoint>& points, TrendFigure f
   const std::vector<double> ticks = nice_ticks(0, top > 0 ? top * 1.05 : 1.0, 4);
   f.y_hi = ticks.back();
   std::vector<AxisTick> y_ticks;
-  for (double t : ticks) y_ticks.push_back({t, format_figure(t, 3)});
+  for (double t : ticks) y_ticks.push_back({t, tick_label(t, ticks[1] - ticks[0])});
   const std::string description =
       fmt::format("{} over {} runs; latest {}: {}", text.title, points.size(),
                   points.empty() ? std::string("none") : points.back().started_at,
