@@ -4,8 +4,8 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <fstream>
 
+#include "common/atomic_file.h"
 #include "regress/html_text.h"
 #include "regress/report_images.h"
 #include "regress/report_sections.h"
@@ -107,27 +107,6 @@ std::string image_folder_name(const RunResult& run) {
                      ::getpid(), counter++);
 }
 
-void write_text_atomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp =
-      path.parent_path() / fmt::format(".{}.tmp-{}", path.filename().string(), ::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.close();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw ReportError(path.string() + ": cannot write the report page");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw ReportError(path.string() + ": cannot move the report page into place: " + ec.message());
-  }
-}
-
 // Earlier reports' picture folders (ours only: named run-*), now unreferenced.
 void remove_old_image_folders(const fs::path& img, const std::string& keep) {
   std::error_code ec;
@@ -149,10 +128,10 @@ void write_report_html(const RunResult& run, const std::vector<TrendPoint>* tren
   if (ec) throw ReportError(dir.string() + ": cannot create the report folder: " + ec.message());
   try {
     const ReportImages images(dir, relative);
-    write_text_atomically(dir / "index.html", page(run, trends, images));
-  } catch (const ReportError&) {
+    write_file_atomically(dir / "index.html", page(run, trends, images));
+  } catch (const FileWriteError& e) {
     fs::remove_all(dir / relative, ec);
-    throw;
+    throw ReportError(e.what());
   } catch (const std::exception& e) {
     fs::remove_all(dir / relative, ec);
     throw ReportError(dir.string() + ": cannot write the report: " + e.what());
