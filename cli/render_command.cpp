@@ -95,6 +95,7 @@ int run_render(const RenderCommandOptions& o) {
   ro.time_limit = o.sampling.time_limit;
   ro.min_spp = o.sampling.min_spp;
   ro.max_spp = o.sampling.max_spp;
+  ro.layer_variance = o.layer_variance;
   try {
     check_sampling_options(desc.render, ro);
   } catch (const std::invalid_argument& e) {
@@ -109,8 +110,8 @@ int run_render(const RenderCommandOptions& o) {
     spdlog::info("{}: {}x{}, {}{} spp, {} shapes, {} lights, {} media, {} layers", o.scene,
                  desc.film.width, desc.film.height,
                  ro.noise_target || desc.render.noise_target ? "up to " : "",
-                 range->second - range->first,
-                 desc.shapes.size(), desc.lights.size(), desc.media.size(), desc.layers.size());
+                 range->second - range->first, desc.shapes.size(), desc.lights.size(),
+                 desc.media.size(), desc.layers.size());
   Progress progress("render");
   if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
   FrameResult result = render_frame(desc, ro);
