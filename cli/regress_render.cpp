@@ -1,12 +1,11 @@
 #include "cli/regress_render.h"
 
-#include <unistd.h>
-
 #include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "common/atomic_file.h"
 #include "compositor/histogram.h"
 #include "compositor/layer_mix.h"
 #include "process/child_process.h"
@@ -41,18 +40,6 @@ std::vector<std::string> render_argv(const regress::SuiteScene& scene, int frame
   if (s.seed) argv.insert(argv.end(), {"--seed", std::to_string(*s.seed)});
   if (s.threads) argv.insert(argv.end(), {"--threads", std::to_string(*s.threads)});
   return argv;
-}
-
-void write_atomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::trunc);
-    f << text;
-    if (!f.flush()) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error("cannot write " + path.string() + ": " + ec.message());
 }
 
 }  // namespace
@@ -113,7 +100,7 @@ void write_golden(const SuiteRender& render, const fs::path& dir) {
     fs::copy_file(render.exr, tmp, fs::copy_options::overwrite_existing);
     fs::rename(tmp, golden_image(dir, render.label));
   }
-  write_atomically(golden_sidecar(dir, render.label), sidecar.dump(2) + "\n");
+  write_file_atomically(golden_sidecar(dir, render.label), sidecar.dump(2) + "\n");
 }
 
 std::optional<double> golden_seconds(const fs::path& dir, const std::string& label) {
