@@ -13,7 +13,8 @@ namespace vesper::sql {
 
 class Db {
  public:
-  explicit Db(const std::string& path);
+  // `what` names the database in errors ("job store", "regression history").
+  explicit Db(const std::string& path, std::string what = "job store");
   ~Db();
   Db(const Db&) = delete;
   Db& operator=(const Db&) = delete;
@@ -23,7 +24,7 @@ class Db {
 
  private:
   sqlite3* db_ = nullptr;
-  std::string path_;
+  std::string path_, what_;
 };
 
 class Stmt {

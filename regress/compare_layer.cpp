@@ -1,0 +1,154 @@
+#include "regress/compare_layer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "regress/holm.h"
+#include "regress/layer_checks.h"
+#include "regress/median.h"
+#include "regress/tile_statistics.h"
+
+namespace vesper::regress {
+namespace {
+
+constexpr size_t kMaxRegions = 20;
+
+Region region_of(const TileTest& t) {
+  return {t.x,           t.y,        t.width,
+          t.height,      t.t,        t.p_value,
+          t.golden_mean, t.new_mean, relative_change(t.golden_mean, t.new_mean)};
+}
+
+std::string where(const Region& r) {
+  return fmt::format("x {}-{} y {}-{}", r.x, r.x + r.width - 1, r.y, r.y + r.height - 1);
+}
+
+// "3 tiles brighter, worst +4.1 % at x 32-47 y 16-31 (Z 7.2)"; regions sorted by |Z|.
+void describe_regions(const std::vector<Region>& regions, LayerResult& out) {
+  for (int sign : {+1, -1}) {
+    int count = 0;
+    const Region* worst = nullptr;
+    for (const Region& r : regions) {
+      if ((r.z > 0) != (sign > 0)) continue;
+      ++count;
+      if (!worst || std::abs(r.relative_change) > std::abs(worst->relative_change)) worst = &r;
+    }
+    if (count == 0) continue;
+    out.reasons.push_back(fmt::format("{} tile{} {}, worst {:+.2f} % at {} (Z {:.1f})", count,
+                                      count == 1 ? "" : "s", sign > 0 ? "brighter" : "darker",
+                                      100 * worst->relative_change, where(*worst), worst->z));
+  }
+}
+
+// Holm over the tested tiles; significant tiles changed by at least
+// min_relative_change become regions, the most significant first.
+void judge_tiles(const TileGrid& grid, const Thresholds& th, LayerResult& out) {
+  std::vector<const TileTest*> tested;
+  std::vector<double> p;
+  out.tile_size = grid.tile_size;
+  out.tiles_x = grid.tiles_x;
+  out.tiles_y = grid.tiles_y;
+  out.tile_z.assign(grid.tiles.size(), 0.f);
+  for (size_t i = 0; i < grid.tiles.size(); ++i) {
+    const TileTest& t = grid.tiles[i];
+    if (!t.tested) continue;
+    tested.push_back(&t);
+    p.push_back(t.p_value);
+    out.tile_z[i] = float(t.t);
+    out.max_abs_z = std::max(out.max_abs_z, std::abs(t.t));
+  }
+  out.tiles = int(tested.size());
+  if (tested.empty()) return;
+  const std::vector<bool> rejected = holm_rejections(p, th.alpha);
+  // The first Holm step is the hardest: alpha / m over both tails.
+  std::vector<double> detectable;
+  for (const TileTest* t : tested)
+    detectable.push_back(detectable_relative_change(*t, th.alpha / double(tested.size())));
+  out.min_detectable_change = median(std::move(detectable));
+  std::vector<Region> regions;
+  int small = 0;
+  for (size_t i = 0; i < tested.size(); ++i) {
+    if (!rejected[i]) continue;
+    ++out.significant_tiles;
+    const Region r = region_of(*tested[i]);
+    if (std::abs(r.relative_change) >= th.min_relative_change)
+      regions.push_back(r);
+    else
+      ++small;
+  }
+  std::sort(regions.begin(), regions.end(),
+            [](const Region& a, const Region& b) { return std::abs(a.z) > std::abs(b.z); });
+  describe_regions(regions, out);
+  if (!regions.empty()) out.verdict = Verdict::Regressed;
+  if (small > 0)
+    out.reasons.push_back(
+        fmt::format("{} tile(s) differ beyond noise but by less than "
+                    "min_relative_change {:g} %: ignored",
+                    small, 100 * th.min_relative_change));
+  if (regions.size() > kMaxRegions) regions.resize(kMaxRegions);
+  out.worst = std::move(regions);
+}
+
+void judge_nonfinite(const NonfiniteCount& n, LayerResult& out) {
+  out.golden_nonfinite = n.golden;
+  out.new_nonfinite = n.fresh;
+  out.introduced_nonfinite = n.introduced;
+  out.introduced_nonfinite_at = n.introduced_at;
+  if (n.introduced == 0) return;
+  out.verdict = Verdict::Regressed;
+  out.reasons.push_back(fmt::format("{} new NaN/Inf pixel{} (golden {}, new {}), first at ({}, {})",
+                                    n.introduced, n.introduced == 1 ? "" : "s", n.golden, n.fresh,
+                                    n.introduced_at[0].x, n.introduced_at[0].y));
+}
+
+void judge_histogram(const LumaPlane& g, const LumaPlane& f, const Thresholds& th,
+                     LayerResult& out) {
+  if (g.value.empty()) return;
+  out.histogram_distance = histogram_distance(g, f);
+  if (out.histogram_distance <= th.max_histogram_distance) return;
+  out.verdict = Verdict::Regressed;
+  out.reasons.push_back(fmt::format(
+      "luminosity histogram moved {:.3f} stops (Wasserstein-1; limit max_histogram_distance {:g})",
+      out.histogram_distance, th.max_histogram_distance));
+}
+
+// What a layer without a tile test was checked for.
+std::string untested_reason(const LayerChannels& layer, bool has_value) {
+  if (!has_value)
+    return "neither RGB nor a single channel: NaN/Inf checked only (no tile test, no histogram)";
+  const std::string v = layer.name == kBeautyLayer ? "variance" : layer.name + ".variance";
+  return "no variance channels (" + v +
+         ".R/G/B) in both renders: NaN/Inf and histogram checked, no per-tile test";
+}
+
+}  // namespace
+
+LayerResult compare_layer(const LayeredImage& golden, const LayerChannels& golden_layer,
+                          const LayeredImage& fresh, const LayerChannels& new_layer,
+                          const Thresholds& thresholds) {
+  LayerResult out;
+  out.layer = golden_layer.name;
+  judge_nonfinite(count_nonfinite(golden, golden_layer, fresh, new_layer), out);
+  const auto g = layer_luminance(golden, golden_layer);
+  const auto f = layer_luminance(fresh, new_layer);
+  if (!g || !f) {
+    out.reasons.push_back(untested_reason(golden_layer, false));
+    return out;
+  }
+  judge_histogram(*g, *f, thresholds, out);
+  out.has_variance = !g->variance.empty() && !f->variance.empty();
+  if (!out.has_variance) {
+    out.reasons.push_back(untested_reason(golden_layer, true));
+    return out;
+  }
+  judge_tiles(tile_tests(*g, *f, thresholds.tile_size), thresholds, out);
+  if (out.verdict == Verdict::Pass)
+    out.reasons.push_back(fmt::format(
+        "no change beyond noise in {} tiles (max |Z| {:.2f}; a change of {:.2f} % would show)",
+        out.tiles, out.max_abs_z, 100 * out.min_detectable_change));
+  return out;
+}
+
+}  // namespace vesper::regress
