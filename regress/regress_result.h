@@ -32,13 +32,21 @@ struct LayerResult {
   std::string layer;  // "beauty" for R,G,B; else the EXR layer name ("fog", "albedo", ...)
   Verdict verdict = Verdict::Pass;
   std::vector<std::string> reasons;  // one line each, e.g. "12 tiles brighter (max +4.1 %)"
-  std::vector<Region> worst;         // the most significant regions, most significant first
+  // The most significant regions, most significant first: tiles, or blocks
+  // of 2x2, 4x4, ... tiles up to the whole frame (faint wide changes).
+  std::vector<Region> worst;
   int tiles = 0, significant_tiles = 0;
-  double max_abs_z = 0;
+  double max_abs_z = 0;  // over every tile and block tested
   // The smallest relative change of a tile's mean the test would have
   // flagged at this noise (median over tiles): how strong a "pass" was.
   double min_detectable_change = 0;
+  // The same for the whole frame (the largest block, docs/regression.md):
+  // the smallest change of the layer's mean luminance the test would flag.
+  double frame_detectable_change = 0;
   double histogram_distance = 0;  // Wasserstein-1 of the luminosity histograms (log2 stops)
+  // The distance noise alone reaches (paired permutations, regress/layer_checks.h):
+  // a histogram regresses only beyond both this and max_histogram_distance.
+  double histogram_noise = 0;
   uint64_t golden_nonfinite = 0, new_nonfinite = 0;  // NaN/Inf pixels in the layer's channels
   // Pixels NaN/Inf in the new render but finite in the golden (any → regressed),
   // and where the first of them are (row-major order, at most 16).

@@ -24,19 +24,47 @@ bool usable(const LumaPlane& p, size_t i) {
   return std::isfinite(p.value[i]) && std::isfinite(p.variance[i]) && p.variance[i] >= 0;
 }
 
+TileSums& operator+=(TileSums& a, const TileSums& b) {
+  a.pixels += b.pixels;
+  a.golden += b.golden;
+  a.fresh += b.fresh;
+  a.variance += b.variance;
+  a.variance_squares += b.variance_squares;
+  return a;
+}
+
 TileSums sum_tile(const LumaPlane& g, const LumaPlane& n, int x0, int y0, int x1, int y1) {
   TileSums s;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       const size_t i = size_t(y) * size_t(g.width) + size_t(x);
       if (!usable(g, i) || !usable(n, i)) continue;
-      ++s.pixels;
-      s.golden += g.value[i];
-      s.fresh += n.value[i];
-      s.variance += g.variance[i] + n.variance[i];
-      s.variance_squares += g.variance[i] * g.variance[i] + n.variance[i] * n.variance[i];
+      TileSums p{1, g.value[i], n.value[i], g.variance[i] + n.variance[i],
+                 g.variance[i] * g.variance[i] + n.variance[i] * n.variance[i]};
+      s += p;
     }
   return s;
+}
+
+// One level of the pyramid: `sums` over nx x ny cells of `cell` pixels.
+struct Level {
+  int cell = 0, nx = 0, ny = 0;
+  std::vector<TileSums> sums;
+  std::vector<int> parts;  // cells of the finer level merged into each (empty: the tiles)
+};
+
+// Merges 2x2 cells of `fine` (fewer at the right and bottom edges).
+Level coarser(const Level& fine) {
+  Level c{fine.cell * 2, (fine.nx + 1) / 2, (fine.ny + 1) / 2, {}, {}};
+  c.sums.resize(size_t(c.nx) * size_t(c.ny));
+  c.parts.resize(c.sums.size());
+  for (int y = 0; y < fine.ny; ++y)
+    for (int x = 0; x < fine.nx; ++x) {
+      const size_t i = size_t(y / 2) * size_t(c.nx) + size_t(x / 2);
+      c.sums[i] += fine.sums[size_t(y) * size_t(fine.nx) + size_t(x)];
+      ++c.parts[i];
+    }
+  return c;
 }
 
 TileTest test_tile(const TileSums& s, TileTest tile) {
@@ -63,27 +91,46 @@ TileTest test_tile(const TileSums& s, TileTest tile) {
   return tile;
 }
 
+// The tests of one level's cells, clipped to the frame. A block made of a
+// single finer cell (at the right or bottom edge) repeats that cell's test
+// and is left out: it would only enlarge the family.
+std::vector<TileTest> test_level(const Level& level, int width, int height) {
+  std::vector<TileTest> tests;
+  for (int ty = 0; ty < level.ny; ++ty)
+    for (int tx = 0; tx < level.nx; ++tx) {
+      if (!level.parts.empty() && level.parts[size_t(ty) * size_t(level.nx) + size_t(tx)] == 1)
+        continue;
+      TileTest tile;
+      tile.x = tx * level.cell;
+      tile.y = ty * level.cell;
+      tile.width = std::min(level.cell, width - tile.x);
+      tile.height = std::min(level.cell, height - tile.y);
+      tests.push_back(test_tile(level.sums[size_t(ty) * size_t(level.nx) + size_t(tx)], tile));
+    }
+  return tests;
+}
+
 }  // namespace
 
 TileGrid tile_tests(const LumaPlane& golden, const LumaPlane& fresh, int tile_size) {
   if (golden.width != fresh.width || golden.height != fresh.height || tile_size < 1 ||
       golden.variance.empty() || fresh.variance.empty())
     throw std::invalid_argument("tile_tests: planes of different sizes or without variance");
-  TileGrid grid;
-  grid.tile_size = tile_size;
-  grid.tiles_x = (golden.width + tile_size - 1) / tile_size;
-  grid.tiles_y = (golden.height + tile_size - 1) / tile_size;
-  for (int ty = 0; ty < grid.tiles_y; ++ty)
-    for (int tx = 0; tx < grid.tiles_x; ++tx) {
-      TileTest tile;
-      tile.x = tx * tile_size;
-      tile.y = ty * tile_size;
-      tile.width = std::min(tile_size, golden.width - tile.x);
-      tile.height = std::min(tile_size, golden.height - tile.y);
-      const TileSums sums =
-          sum_tile(golden, fresh, tile.x, tile.y, tile.x + tile.width, tile.y + tile.height);
-      grid.tiles.push_back(test_tile(sums, tile));
-    }
+  Level level{tile_size,
+              (golden.width + tile_size - 1) / tile_size,
+              (golden.height + tile_size - 1) / tile_size,
+              {}};
+  for (int ty = 0; ty < level.ny; ++ty)
+    for (int tx = 0; tx < level.nx; ++tx)
+      level.sums.push_back(sum_tile(golden, fresh, tx * tile_size, ty * tile_size,
+                                    std::min((tx + 1) * tile_size, golden.width),
+                                    std::min((ty + 1) * tile_size, golden.height)));
+  TileGrid grid{tile_size, level.nx, level.ny, test_level(level, golden.width, golden.height), {}};
+  while (level.nx > 1 || level.ny > 1) {
+    level = coarser(level);
+    const std::vector<TileTest> blocks = test_level(level, golden.width, golden.height);
+    grid.blocks.insert(grid.blocks.end(), blocks.begin(), blocks.end());
+  }
   return grid;
 }
 

@@ -2,6 +2,9 @@
 // Per-tile tests of "the new render's mean equals the golden's": a tile's
 // mean luminance in both, the variance of their difference from the
 // variance channels, and a t statistic (docs/regression.md, "Statistics").
+// Tiles find local changes; blocks of 2x2, 4x4, ... tiles up to the whole
+// frame find faint changes spread over a large area (a fog density, a light's
+// intensity), which no single tile has the samples to show.
 #include <vector>
 
 #include "regress/layer_channels.h"
@@ -25,7 +28,8 @@ struct TileTest {
 
 struct TileGrid {
   int tile_size = 0, tiles_x = 0, tiles_y = 0;
-  std::vector<TileTest> tiles;  // row-major
+  std::vector<TileTest> tiles;   // row-major
+  std::vector<TileTest> blocks;  // 2^k x 2^k tiles for k = 1, 2, ... up to one block, the frame
 };
 
 // Both planes must have the same size and variances. Pixels whose value or
