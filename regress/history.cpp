@@ -30,31 +30,35 @@ void insert_scene(sql::Db& db, int64_t run, const SceneResult& scene) {
   for (const LayerResult& l : scene.layers)
     sql::Stmt(db,
               "INSERT INTO layer_results(run_id, scene, layer, verdict, max_abs_z,"
-              " min_detectable_change, histogram_distance, golden_nonfinite, new_nonfinite,"
-              " significant_tiles) VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)")
+              " min_detectable_change, frame_detectable_change, histogram_distance,"
+              " golden_nonfinite, new_nonfinite, introduced_nonfinite, significant_tiles)"
+              " VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)")
         .bind(1, run)
         .bind(2, scene.name)
         .bind(3, l.layer)
         .bind(4, std::string(verdict_name(l.verdict)))
         .bind(5, l.max_abs_z)
         .bind(6, l.min_detectable_change)
-        .bind(7, l.histogram_distance)
-        .bind(8, int64_t(l.golden_nonfinite))
-        .bind(9, int64_t(l.new_nonfinite))
-        .bind(10, int64_t(l.significant_tiles))
+        .bind(7, l.frame_detectable_change)
+        .bind(8, l.histogram_distance)
+        .bind(9, int64_t(l.golden_nonfinite))
+        .bind(10, int64_t(l.new_nonfinite))
+        .bind(11, int64_t(l.introduced_nonfinite))
+        .bind(12, int64_t(l.significant_tiles))
         .run();
 }
 
 std::vector<TrendLayer> layers_of(const sql::Db& db, int64_t run, const std::string& scene) {
   sql::Stmt s(db,
-              "SELECT layer, verdict, max_abs_z, min_detectable_change, histogram_distance,"
-              " golden_nonfinite, new_nonfinite, significant_tiles FROM layer_results"
+              "SELECT layer, verdict, max_abs_z, min_detectable_change, frame_detectable_change,"
+              " histogram_distance, golden_nonfinite, new_nonfinite, introduced_nonfinite,"
+              " significant_tiles FROM layer_results"
               " WHERE run_id = ?1 AND scene = ?2 ORDER BY rowid");
   s.bind(1, run).bind(2, scene);
   std::vector<TrendLayer> layers;
   while (s.step())
-    layers.push_back({s.text(0), verdict_column(s, 1), s.f64(2), s.f64(3), s.f64(4),
-                      uint64_t(s.i64(5)), uint64_t(s.i64(6)), int(s.i64(7))});
+    layers.push_back({s.text(0), verdict_column(s, 1), s.f64(2), s.f64(3), s.f64(4), s.f64(5),
+                      uint64_t(s.i64(6)), uint64_t(s.i64(7)), uint64_t(s.i64(8)), int(s.i64(9))});
   return layers;
 }
 

@@ -23,8 +23,9 @@ namespace regress {
 struct TrendLayer {
   std::string layer;
   Verdict verdict = Verdict::Pass;
-  double max_abs_z = 0, min_detectable_change = 0, histogram_distance = 0;
-  uint64_t golden_nonfinite = 0, new_nonfinite = 0;
+  double max_abs_z = 0, min_detectable_change = 0, frame_detectable_change = 0;
+  double histogram_distance = 0;
+  uint64_t golden_nonfinite = 0, new_nonfinite = 0, introduced_nonfinite = 0;
   int significant_tiles = 0;
 };
 

@@ -26,9 +26,11 @@ CREATE TABLE layer_results(
   verdict TEXT NOT NULL CHECK (verdict IN ('pass', 'regressed', 'error')),
   max_abs_z REAL NOT NULL,
   min_detectable_change REAL NOT NULL,
+  frame_detectable_change REAL NOT NULL,
   histogram_distance REAL NOT NULL,
   golden_nonfinite INTEGER NOT NULL,
   new_nonfinite INTEGER NOT NULL,
+  introduced_nonfinite INTEGER NOT NULL,
   significant_tiles INTEGER NOT NULL,
   PRIMARY KEY (run_id, scene, layer),
   FOREIGN KEY (run_id, scene) REFERENCES scene_results(run_id, scene) ON DELETE CASCADE
