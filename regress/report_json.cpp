@@ -10,6 +10,12 @@
 #include "common/json_reader.h"
 
 namespace vesper::regress {
+
+// Regions are plain figures: written by nlohmann's field list (its NaN/Inf
+// dump as null), read back by read_region with JSON-path errors.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Region, x, y, width, height, z, p_value, golden_mean, new_mean,
+                                   relative_change)
+
 namespace {
 
 using nlohmann::json;
@@ -17,23 +23,11 @@ using nlohmann::json;
 // Non-finite numbers have no JSON form: they are written as null and read back as NaN.
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-json region_json(const Region& r) {
-  return {{"x", r.x},
-          {"y", r.y},
-          {"width", r.width},
-          {"height", r.height},
-          {"z", number(r.z)},
-          {"p_value", number(r.p_value)},
-          {"golden_mean", number(r.golden_mean)},
-          {"new_mean", number(r.new_mean)},
-          {"relative_change", number(r.relative_change)}};
-}
-
 json layer_json(const LayerResult& l) {
   json at = json::array();
   for (const Pixel& p : l.introduced_nonfinite_at) at.push_back({p.x, p.y});
   json worst = json::array(), z = json::array();
-  for (const Region& r : l.worst) worst.push_back(region_json(r));
+  for (const Region& r : l.worst) worst.push_back(r);
   for (float v : l.tile_z) z.push_back(number(v));
   return {{"layer", l.layer},
           {"verdict", verdict_name(l.verdict)},
@@ -96,6 +90,21 @@ std::vector<std::string> read_strings(JsonReader& node, std::string_view key) {
   return out;
 }
 
+// The array at `key`, each element read by `read`.
+template <typename Read>
+auto read_list(JsonReader& node, std::string_view key, Read read) {
+  const JsonReader a = node.array(key);
+  std::vector<decltype(read(a.element(0)))> out;
+  for (size_t i = 0; i < a.size(); ++i) out.push_back(read(a.element(i)));
+  return out;
+}
+
+// What every scene and layer says: its verdict and why.
+void read_judgement(JsonReader& n, Verdict& verdict, std::vector<std::string>& reasons) {
+  verdict = read_verdict(n);
+  reasons = read_strings(n, "reasons");
+}
+
 Region read_region(JsonReader n) {
   n.expect_object();
   return {read_int(n, "x"),
@@ -139,8 +148,7 @@ LayerResult read_layer(JsonReader n) {
   n.expect_object();
   LayerResult l;
   l.layer = n.string("layer");
-  l.verdict = read_verdict(n);
-  l.reasons = read_strings(n, "reasons");
+  read_judgement(n, l.verdict, l.reasons);
   l.has_variance = n.boolean("has_variance", false);
   l.tiles = read_int(n, "tiles");
   l.significant_tiles = read_int(n, "significant_tiles");
@@ -150,8 +158,7 @@ LayerResult read_layer(JsonReader n) {
   l.histogram_distance = read_number(n, "histogram_distance");
   l.histogram_noise = read_number(n, "histogram_noise");
   read_nonfinite(n.object("nonfinite"), l);
-  const JsonReader worst = n.array("worst");
-  for (size_t i = 0; i < worst.size(); ++i) l.worst.push_back(read_region(worst.element(i)));
+  l.worst = read_list(n, "worst", read_region);
   read_significance(n.object("significance"), l);
   return l;
 }
@@ -160,8 +167,7 @@ SceneResult read_scene(JsonReader n) {
   n.expect_object();
   SceneResult s;
   s.name = n.string("name");
-  s.verdict = read_verdict(n);
-  s.reasons = read_strings(n, "reasons");
+  read_judgement(n, s.verdict, s.reasons);
   s.channels_added = read_strings(n, "channels_added");
   s.channels_missing = read_strings(n, "channels_missing");
   s.golden_seconds = read_number(n, "golden_seconds");
@@ -170,8 +176,7 @@ SceneResult read_scene(JsonReader n) {
   s.reused = n.boolean("reused", false);
   s.golden_image = n.child("golden_image").as_string(true);
   s.new_image = n.child("new_image").as_string(true);
-  const JsonReader layers = n.array("layers");
-  for (size_t i = 0; i < layers.size(); ++i) s.layers.push_back(read_layer(layers.element(i)));
+  s.layers = read_list(n, "layers", read_layer);
   return s;
 }
 
@@ -197,8 +202,7 @@ RunResult report_from_json(const json& doc, const std::string& file) {
   run.started_at = root.child("started_at").as_string(true);
   run.renderer_version = root.child("renderer_version").as_string(true);
   run.verdict = read_verdict(root);
-  const JsonReader scenes = root.array("scenes");
-  for (size_t i = 0; i < scenes.size(); ++i) run.scenes.push_back(read_scene(scenes.element(i)));
+  run.scenes = read_list(root, "scenes", read_scene);
   return run;
 }
 

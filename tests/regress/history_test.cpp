@@ -9,24 +9,14 @@
 
 #include "regress/history.h"
 #include "sample_results.h"
+#include "temp_dir_test.h"
 
 namespace vesper::regress {
 namespace {
 
 namespace fs = std::filesystem;
 
-class HistoryTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vesper-history-test-" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+using HistoryTest = test::TempDirTest;
 
 RunResult run_with_time(const std::string& started_at, double seconds, bool reused = false) {
   RunResult run = test::sample_run();

@@ -8,25 +8,20 @@
 #include "regress/load_frame.h"
 #include "renderer/output/exr_io.h"
 #include "synthetic_images.h"
+#include "temp_dir_test.h"
 
 namespace vesper::regress {
 namespace {
 
 namespace fs = std::filesystem;
 
-class LoadFrameTest : public ::testing::Test {
+class LoadFrameTest : public test::TempDirTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vesper-load-frame-test-" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    TempDirTest::SetUp();
     write_exr(test::synthetic_image(16, 16, {{"beauty"}}, 1), dir_ / "golden.exr");
     write_exr(test::synthetic_image(16, 16, {{"beauty"}}, 2), dir_ / "new.exr");
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
 };
 
 TEST_F(LoadFrameTest, GoodFilesCompareAndCarryTheirPaths) {

@@ -6,24 +6,21 @@
 #include <fstream>
 
 #include "regress/suite.h"
+#include "temp_dir_test.h"
 
 namespace vesper::regress {
 namespace {
 
 namespace fs = std::filesystem;
 
-class SuiteTest : public ::testing::Test {
+class SuiteTest : public test::TempDirTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vesper-suite-test-" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
+    TempDirTest::SetUp();
     fs::create_directories(dir_ / "cornell");
     std::ofstream(dir_ / "cornell" / "scene.json") << "{}";
     std::ofstream(dir_ / "fog.json") << "{}";
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   fs::path write(const std::string& text) {
     const fs::path p = dir_ / "suite.json";
@@ -45,8 +42,6 @@ class SuiteTest : public ::testing::Test {
     ADD_FAILURE() << "accepted: " << text;
     return SuiteError("", "", "");
   }
-
-  fs::path dir_;
 };
 
 TEST_F(SuiteTest, LoadsScenesResolvesPathsAndMergesThresholds) {
@@ -81,14 +76,21 @@ TEST_F(SuiteTest, LoadsScenesResolvesPathsAndMergesThresholds) {
   EXPECT_EQ(f.thresholds.tile_size, 32);
 }
 
-struct BadScene {
-  const char* scene;  // one element of "scenes"
+// A rejected document: the JSON path named and a part of the message.
+struct Rejected {
+  const char* text;
   const char* json_path;
-  const char* reason;  // a part of the message
+  const char* reason;
 };
 
+void expect_names(const SuiteError& e, const Rejected& c) {
+  EXPECT_EQ(e.json_path(), c.json_path) << c.text << "\n" << e.what();
+  EXPECT_NE(e.message().find(c.reason), std::string::npos) << c.text << "\n" << e.what();
+}
+
 TEST_F(SuiteTest, RejectsBadScenesNamingThePathAndTheReason) {
-  const BadScene cases[] = {
+  const Rejected cases[] = {
+      // each text is the suite's only scene
       {R"({"name": "a/b", "scene": "fog.json", "spp": 4})", "/scenes/0/name", "letters, digits"},
       {R"({"name": "..", "scene": "fog.json", "spp": 4})", "/scenes/0/name", "not \".\""},
       {R"({"name": "c", "scene": "nope.json", "spp": 4})", "/scenes/0/scene", "no scene file"},
@@ -130,20 +132,11 @@ TEST_F(SuiteTest, RejectsBadScenesNamingThePathAndTheReason) {
        "object"},
       {R"("cornell")", "/scenes/0", "object"},
   };
-  for (const BadScene& c : cases) {
-    const SuiteError e = error_for_scene(c.scene);
-    EXPECT_EQ(e.json_path(), c.json_path) << c.scene << "\n" << e.what();
-    EXPECT_NE(e.message().find(c.reason), std::string::npos) << c.scene << "\n" << e.what();
-  }
+  for (const Rejected& c : cases) expect_names(error_for_scene(c.text), c);
 }
 
 TEST_F(SuiteTest, RejectsBadSuitesNamingThePathAndTheReason) {
-  struct Case {
-    const char* text;
-    const char* json_path;
-    const char* reason;
-  };
-  const Case cases[] = {
+  const Rejected cases[] = {
       {R"({"format": "vesper-suite/2", "scenes": []})", "/format", "vesper-suite/1"},
       {R"({"scenes": []})", "/", "format"},
       {R"({"format": "vesper-suite/1", "scene": []})", "/scene", "did you mean 'scenes'?"},
@@ -157,11 +150,7 @@ TEST_F(SuiteTest, RejectsBadSuitesNamingThePathAndTheReason) {
        "/scenes/1/name", "duplicate scene name \"c\" (already at /scenes/0)"},
       {R"([1, 2])", "/", "object"},
   };
-  for (const Case& c : cases) {
-    const SuiteError e = error_for(c.text);
-    EXPECT_EQ(e.json_path(), c.json_path) << c.text << "\n" << e.what();
-    EXPECT_NE(e.message().find(c.reason), std::string::npos) << c.text << "\n" << e.what();
-  }
+  for (const Rejected& c : cases) expect_names(error_for(c.text), c);
 }
 
 TEST_F(SuiteTest, InvalidJsonAndMissingFilesNameTheFile) {
