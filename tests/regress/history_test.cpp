@@ -9,14 +9,18 @@
 
 #include "regress/history.h"
 #include "sample_results.h"
-#include "temp_dir_test.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper::regress {
 namespace {
 
 namespace fs = std::filesystem;
 
-using HistoryTest = test::TempDirTest;
+class HistoryTest : public ::testing::Test {
+ protected:
+  test::TempDir tmp_{"regress"};
+  std::filesystem::path dir_ = tmp_.path();
+};
 
 RunResult run_with_time(const std::string& started_at, double seconds, bool reused = false) {
   RunResult run = test::sample_run();

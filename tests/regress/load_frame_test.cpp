@@ -8,17 +8,19 @@
 #include "regress/load_frame.h"
 #include "renderer/output/exr_io.h"
 #include "synthetic_images.h"
-#include "temp_dir_test.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper::regress {
 namespace {
 
 namespace fs = std::filesystem;
 
-class LoadFrameTest : public test::TempDirTest {
+class LoadFrameTest : public ::testing::Test {
  protected:
+  test::TempDir tmp_{"regress"};
+  std::filesystem::path dir_ = tmp_.path();
+
   void SetUp() override {
-    TempDirTest::SetUp();
     write_exr(test::synthetic_image(16, 16, {{"beauty"}}, 1), dir_ / "golden.exr");
     write_exr(test::synthetic_image(16, 16, {{"beauty"}}, 2), dir_ / "new.exr");
   }

@@ -6,17 +6,19 @@
 #include <fstream>
 
 #include "regress/suite.h"
-#include "temp_dir_test.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper::regress {
 namespace {
 
 namespace fs = std::filesystem;
 
-class SuiteTest : public test::TempDirTest {
+class SuiteTest : public ::testing::Test {
  protected:
+  test::TempDir tmp_{"regress"};
+  std::filesystem::path dir_ = tmp_.path();
+
   void SetUp() override {
-    TempDirTest::SetUp();
     fs::create_directories(dir_ / "cornell");
     std::ofstream(dir_ / "cornell" / "scene.json") << "{}";
     std::ofstream(dir_ / "fog.json") << "{}";
