@@ -33,8 +33,6 @@ Worst expect_no_false_alarm(const SceneDescription& scene, const char* label) {
       worst.histogram_distance = std::max(worst.histogram_distance, l.histogram_distance);
       worst.histogram_margin =
           std::max(worst.histogram_margin, l.histogram_distance / l.histogram_noise);
-      std::printf("  seed %d %s: hist %.4f noise %.4f\n", int(seed), l.layer.c_str(),
-                  l.histogram_distance, l.histogram_noise);
     }
   }
   std::printf("%s: 20 seeds, max |Z| %.2f, max histogram distance %.4f stops (%.2f of noise)\n",
