@@ -57,6 +57,7 @@ std::vector<const TileTest*> tested_tiles(const TileGrid& grid, LayerResult& out
   out.tiles_x = grid.tiles_x;
   out.tiles_y = grid.tiles_y;
   out.tile_z.assign(grid.tiles.size(), 0.f);
+  out.tile_significant.assign(grid.tiles.size(), 0);
   std::vector<const TileTest*> tested;
   for (size_t i = 0; i < grid.tiles.size(); ++i) {
     const TileTest& t = grid.tiles[i];
@@ -95,10 +96,12 @@ void judge_tiles(const TileGrid& grid, const Thresholds& th, LayerResult& out) {
     if (!rejected[i]) continue;
     out.significant_tiles += i < tiles.size();
     const Region r = region_of(*family[i]);
-    if (std::abs(r.relative_change) >= th.min_relative_change)
-      regions.push_back(r);
-    else
+    if (std::abs(r.relative_change) < th.min_relative_change) {
       ++small;
+      continue;
+    }
+    regions.push_back(r);
+    if (i < tiles.size()) out.tile_significant[size_t(tiles[i] - grid.tiles.data())] = 1;
   }
   std::sort(regions.begin(), regions.end(),
             [](const Region& a, const Region& b) { return std::abs(a.z) > std::abs(b.z); });

@@ -17,15 +17,21 @@ Verdict verdict_column(const sql::Stmt& s, int col) {
 }
 
 void insert_scene(sql::Db& db, int64_t run, const SceneResult& scene) {
+  const TrendPoint p = trend_point(scene, "");
   sql::Stmt(db,
-            "INSERT INTO scene_results(run_id, scene, verdict, golden_seconds, new_seconds, reused)"
-            " VALUES(?1, ?2, ?3, ?4, ?5, ?6)")
+            "INSERT INTO scene_results(run_id, scene, verdict, golden_seconds, new_seconds, reused,"
+            " render_seconds, max_abs_z, min_detectable_change, histogram_distance)"
+            " VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)")
       .bind(1, run)
       .bind(2, scene.name)
       .bind(3, std::string(verdict_name(scene.verdict)))
       .bind(4, scene.golden_seconds)
       .bind(5, scene.new_seconds)
       .bind(6, int64_t(scene.reused))
+      .bind(7, p.render_seconds)
+      .bind(8, p.max_abs_z)
+      .bind(9, p.min_detectable_change)
+      .bind(10, p.histogram_distance)
       .run();
   for (const LayerResult& l : scene.layers)
     sql::Stmt(db,
@@ -48,18 +54,15 @@ void insert_scene(sql::Db& db, int64_t run, const SceneResult& scene) {
         .run();
 }
 
-std::vector<TrendLayer> layers_of(const sql::Db& db, int64_t run, const std::string& scene) {
-  sql::Stmt s(db,
-              "SELECT layer, verdict, max_abs_z, min_detectable_change, frame_detectable_change,"
-              " histogram_distance, golden_nonfinite, new_nonfinite, introduced_nonfinite,"
-              " significant_tiles FROM layer_results"
-              " WHERE run_id = ?1 AND scene = ?2 ORDER BY rowid");
-  s.bind(1, run).bind(2, scene);
-  std::vector<TrendLayer> layers;
-  while (s.step())
-    layers.push_back({s.text(0), verdict_column(s, 1), s.f64(2), s.f64(3), s.f64(4), s.f64(5),
-                      uint64_t(s.i64(6)), uint64_t(s.i64(7)), uint64_t(s.i64(8)), int(s.i64(9))});
-  return layers;
+// The SELECT list read_point reads, over scene_results s joined with runs r.
+constexpr const char* kPointColumns =
+    "SELECT s.scene, r.started_at, s.verdict, s.render_seconds, s.reused, s.max_abs_z,"
+    " s.min_detectable_change, s.histogram_distance FROM scene_results s"
+    " JOIN runs r ON r.id = s.run_id ";
+
+TrendPoint read_point(const sql::Stmt& s) {
+  return {s.text(0), s.text(1), verdict_column(s, 2), s.f64(3), s.i64(4) != 0, s.f64(5),
+          s.f64(6),  s.f64(7)};
 }
 
 }  // namespace
@@ -91,23 +94,24 @@ int64_t History::record(const RunResult& run) {
 }
 
 std::vector<TrendPoint> History::trend(const std::string& scene, int last_n) const {
-  sql::Stmt s(*db_,
-              "SELECT r.id, r.started_at, r.renderer_version, s.verdict, s.golden_seconds,"
-              " s.new_seconds, s.reused FROM scene_results s JOIN runs r ON r.id = s.run_id"
-              " WHERE s.scene = ?1 ORDER BY r.id DESC LIMIT ?2");
+  sql::Stmt s(
+      *db_,
+      (std::string(kPointColumns) + "WHERE s.scene = ?1 ORDER BY r.id DESC LIMIT ?2").c_str());
   s.bind(1, scene).bind(2, int64_t(std::max(last_n, 0)));
   std::vector<TrendPoint> points;
-  while (s.step())
-    points.push_back({s.i64(0),
-                      s.text(1),
-                      s.text(2),
-                      verdict_column(s, 3),
-                      s.f64(4),
-                      s.f64(5),
-                      s.i64(6) != 0,
-                      {}});
-  for (TrendPoint& p : points) p.layers = layers_of(*db_, p.run, scene);
+  while (s.step()) points.push_back(read_point(s));
   std::reverse(points.begin(), points.end());
+  return points;
+}
+
+std::vector<TrendPoint> History::recent_trends(int last_runs) const {
+  sql::Stmt s(*db_, (std::string(kPointColumns) +
+                     "WHERE r.id IN (SELECT id FROM runs ORDER BY id DESC LIMIT ?1)"
+                     " ORDER BY r.id, s.rowid")
+                        .c_str());
+  s.bind(1, int64_t(std::max(last_runs, 0)));
+  std::vector<TrendPoint> points;
+  while (s.step()) points.push_back(read_point(s));
   return points;
 }
 

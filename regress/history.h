@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "regress/regress_result.h"
+#include "regress/trend.h"
 
 namespace vesper {
 namespace sql {
@@ -19,25 +20,6 @@ class Db;
 }
 
 namespace regress {
-
-struct TrendLayer {
-  std::string layer;
-  Verdict verdict = Verdict::Pass;
-  double max_abs_z = 0, min_detectable_change = 0, frame_detectable_change = 0;
-  double histogram_distance = 0;
-  uint64_t golden_nonfinite = 0, new_nonfinite = 0, introduced_nonfinite = 0;
-  int significant_tiles = 0;
-};
-
-// One scene in one run.
-struct TrendPoint {
-  int64_t run = 0;  // the run's id in the database
-  std::string started_at, renderer_version;
-  Verdict verdict = Verdict::Pass;  // the scene's
-  double golden_seconds = 0, new_seconds = 0;
-  bool reused = false;
-  std::vector<TrendLayer> layers;  // in the order they were recorded
-};
 
 class History {
  public:
@@ -47,12 +29,15 @@ class History {
   History(const History&) = delete;
   History& operator=(const History&) = delete;
 
-  // Records the run with all its scenes and layers in one transaction;
-  // returns its id.
+  // Records the run with all its scenes (and their trend points,
+  // trend_point()) and layers in one transaction; returns its id.
   int64_t record(const RunResult& run);
 
-  // The scene's last `last_n` runs (at most), oldest first.
+  // The scene's points in its last `last_n` runs (at most), oldest first.
   std::vector<TrendPoint> trend(const std::string& scene, int last_n) const;
+  // Every scene's points in the last `last_runs` runs, oldest run first:
+  // what write_report_html takes.
+  std::vector<TrendPoint> recent_trends(int last_runs) const;
 
   // Median render time of the scene over its last `last_n` rendered (not
   // reused) runs; nullopt without any.

@@ -1,11 +1,11 @@
 #include "regress/report_json.h"
 
-#include <fstream>
 #include <limits>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
+#include "common/atomic_file.h"
 #include "common/json_parse.h"
 #include "common/json_reader.h"
 
@@ -47,7 +47,11 @@ json layer_json(const LayerResult& l) {
             {"introduced_at", at}}},
           {"worst", worst},
           {"significance",
-           {{"tile_size", l.tile_size}, {"tiles_x", l.tiles_x}, {"tiles_y", l.tiles_y}, {"z", z}}}};
+           {{"tile_size", l.tile_size},
+            {"tiles_x", l.tiles_x},
+            {"tiles_y", l.tiles_y},
+            {"z", z},
+            {"significant", l.tile_significant}}}};
 }
 
 json scene_json(const SceneResult& s) {
@@ -142,6 +146,8 @@ void read_significance(JsonReader n, LayerResult& l) {
     l.tile_z.push_back(e.json().is_null() ? std::numeric_limits<float>::quiet_NaN()
                                           : float(e.as_number()));
   }
+  for (double v : n.array("significant").as_number_array(Range::closed(0, 1)))
+    l.tile_significant.push_back(uint8_t(v));
 }
 
 LayerResult read_layer(JsonReader n) {
@@ -207,15 +213,7 @@ RunResult report_from_json(const json& doc, const std::string& file) {
 }
 
 void write_report_json(const RunResult& run, const std::filesystem::path& path) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << report_to_json(run).dump(2) << '\n';
-    if (!out.flush()) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error("cannot write " + path.string() + ": " + ec.message());
+  write_file_atomically(path, report_to_json(run).dump(2) + "\n");
 }
 
 RunResult read_report_json(const std::filesystem::path& path) {

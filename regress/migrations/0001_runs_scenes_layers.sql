@@ -1,5 +1,6 @@
 -- The regression history: one row per run, per scene of a run, per layer of
 -- a scene (regress/history.h). Times are ISO 8601 UTC text, durations seconds.
+-- A scene's row carries its trend point (regress/trend.h): what the report plots.
 CREATE TABLE runs(
   id INTEGER PRIMARY KEY,
   started_at TEXT NOT NULL,
@@ -15,6 +16,10 @@ CREATE TABLE scene_results(
   golden_seconds REAL NOT NULL,
   new_seconds REAL NOT NULL,
   reused INTEGER NOT NULL,
+  render_seconds REAL NOT NULL,
+  max_abs_z REAL NOT NULL,
+  min_detectable_change REAL NOT NULL,
+  histogram_distance REAL NOT NULL,
   PRIMARY KEY (run_id, scene)
 );
 CREATE INDEX scene_results_by_scene ON scene_results(scene, run_id);

@@ -63,6 +63,9 @@ TEST(CompareFrames, AChangedTileIsARegionNamedInTheReasons) {
   EXPECT_GT(fog.worst[0].z, 10);  // 0.04 / sqrt(2 * 0.001 / 256) = 14
   EXPECT_EQ(fog.significant_tiles, 1);
   EXPECT_EQ(fog.tile_z[2 * 4 + 1], float(fog.worst[0].z));
+  std::vector<uint8_t> significant(16, 0);
+  significant[2 * 4 + 1] = 1;
+  EXPECT_EQ(fog.tile_significant, significant);
   ASSERT_EQ(r.reasons.size(), 1u) << all_reasons(r);
   EXPECT_EQ(r.reasons[0].rfind("fog: brighter in 1 tile and 1 larger block, worst +2", 0), 0u)
       << r.reasons[0];
@@ -77,6 +80,7 @@ TEST(CompareFrames, MinRelativeChangeIgnoresSmallSignificantChanges) {
   const SceneResult r = compare_frames(synthetic_image(64, 64, kLayers, 1), fresh, nullptr, t);
   EXPECT_EQ(r.verdict, Verdict::Pass) << all_reasons(r);
   EXPECT_EQ(layer(r, "fog").significant_tiles, 1);
+  EXPECT_EQ(layer(r, "fog").tile_significant, std::vector<uint8_t>(16, 0));  // does not count
   EXPECT_NE(all_reasons(r).find("less than min_relative_change 50 %: ignored"), std::string::npos)
       << all_reasons(r);
 }

@@ -39,31 +39,41 @@ TEST_F(HistoryTest, RecordsRunsAndReturnsTheTrendOldestFirst) {
   const std::vector<TrendPoint> all = h.trend("cornell", 10);
   ASSERT_EQ(all.size(), 3u);
   EXPECT_EQ(all[0].started_at, "2024-05-01T02:00:00Z");
-  EXPECT_EQ(all[2].run, last);
-  EXPECT_EQ(all[2].new_seconds, 4.0);
-  EXPECT_EQ(all[2].golden_seconds, 2.5);
-  EXPECT_EQ(all[2].verdict, Verdict::Regressed);
-  EXPECT_EQ(all[2].renderer_version, "vesper 0.13.0");
-  ASSERT_EQ(all[2].layers.size(), 2u);
-  const TrendLayer& b = all[2].layers[0];
-  EXPECT_EQ(b.layer, "beauty");
-  EXPECT_EQ(b.verdict, Verdict::Regressed);
-  EXPECT_EQ(b.max_abs_z, 7.2);
-  EXPECT_EQ(b.min_detectable_change, 0.021);
-  EXPECT_EQ(b.frame_detectable_change, 0.006);
-  EXPECT_EQ(b.histogram_distance, 0.012);
-  EXPECT_EQ(b.new_nonfinite, 3u);
-  EXPECT_EQ(b.introduced_nonfinite, 2u);
-  EXPECT_EQ(b.significant_tiles, 2);
-  EXPECT_EQ(all[2].layers[1].layer, "fog");
+  // What the report draws is what trend_point makes of the scene.
+  const TrendPoint expected = trend_point(run_with_time("", 4.0).scenes[0], "2024-05-03T02:00:00Z");
+  const TrendPoint& p = all[2];
+  EXPECT_EQ(p.scene, "cornell");
+  EXPECT_EQ(p.started_at, expected.started_at);
+  EXPECT_EQ(p.verdict, Verdict::Regressed);
+  EXPECT_EQ(p.render_seconds, 4.0);
+  EXPECT_FALSE(p.reused);
+  EXPECT_EQ(p.max_abs_z, expected.max_abs_z);
+  EXPECT_EQ(p.min_detectable_change, expected.min_detectable_change);
+  EXPECT_EQ(p.min_detectable_change, 0.021);
+  EXPECT_EQ(p.histogram_distance, expected.histogram_distance);
   const std::vector<TrendPoint> two = h.trend("cornell", 2);
   ASSERT_EQ(two.size(), 2u);
   EXPECT_EQ(two[0].started_at, "2024-05-02T02:00:00Z");
   const std::vector<TrendPoint> smoke = h.trend("smoke", 10);
   ASSERT_EQ(smoke.size(), 3u);
   EXPECT_TRUE(smoke[0].reused);
+  EXPECT_EQ(smoke[0].render_seconds, 0);  // reused: no render, no time
   EXPECT_EQ(smoke[0].verdict, Verdict::Error);
   EXPECT_TRUE(h.trend("nope", 10).empty());
+}
+
+TEST_F(HistoryTest, RecentTrendsHoldEverySceneOfTheLastRuns) {
+  History h(dir_ / "history.db");
+  h.record(run_with_time("a", 2.0));
+  h.record(run_with_time("b", 3.0));
+  h.record(run_with_time("c", 4.0));
+  const std::vector<TrendPoint> points = h.recent_trends(2);
+  ASSERT_EQ(points.size(), 4u);  // runs b and c, cornell and smoke each
+  EXPECT_EQ(points[0].started_at, "b");
+  EXPECT_EQ(points[0].scene, "cornell");
+  EXPECT_EQ(points[1].scene, "smoke");
+  EXPECT_EQ(points[3].started_at, "c");
+  EXPECT_EQ(points[2].render_seconds, 4.0);
 }
 
 TEST_F(HistoryTest, MedianTimeSkipsReusedRunsAndPersists) {

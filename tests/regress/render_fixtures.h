@@ -9,17 +9,19 @@
 
 namespace vesper::test {
 
-// Every layer of the scene, the beauty's variance channels, a fixed seed.
-inline LayeredImage render_with_variance(const SceneDescription& d, uint64_t seed) {
+// Every layer of the scene, the beauty's variance channels (and with
+// `layer_variance` every layer's, <layer>.variance.R/G/B), a fixed seed.
+inline LayeredImage render_with_variance(const SceneDescription& d, uint64_t seed,
+                                         bool layer_variance = false) {
   RenderOptions o;
   o.seed = seed;
   o.aovs = std::vector<Aov>{Aov::Variance};
+  o.layer_variance = layer_variance;
   return render_frame(d, o).image;
 }
 
-// The small Cornell box with a "surfaces" layer (surface-first paths, no
-// variance channels of its own) and the back wall in its own material
-// "back" (same albedo as the other white walls), so a test can change it alone.
+// The small Cornell box with a "surfaces" layer (surface-first paths) and the back wall in its own
+// material "back" (same albedo as the other white walls), so a test can change it alone.
 inline SceneDescription cornell(int w, int h, int spp) {
   SceneDescription d = small_cornell(w, h, spp);
   d.shapes[2].material = add_material(d, "back", DiffuseMaterialDesc{Rgb(0.73f)});

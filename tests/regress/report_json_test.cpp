@@ -23,6 +23,7 @@ void expect_same(const RunResult& read, const RunResult& written) {
   EXPECT_EQ(b.introduced_nonfinite_at[1].y, 8);
   EXPECT_EQ(b.worst[0].p_value, 6e-13);
   EXPECT_EQ(b.tile_z, written.scenes[0].layers[0].tile_z);
+  EXPECT_EQ(b.tile_significant, written.scenes[0].layers[0].tile_significant);
   EXPECT_TRUE(read.scenes[1].reused);
 }
 
@@ -48,6 +49,7 @@ TEST(ReportJson, HasTheDocumentedKeys) {
   EXPECT_EQ(beauty["nonfinite"]["introduced_at"][1], nlohmann::json({7, 8}));
   EXPECT_EQ(beauty["significance"]["tiles_x"], 4);
   EXPECT_EQ(beauty["significance"]["z"].size(), 12u);
+  EXPECT_EQ(beauty["significance"]["significant"][1], 1);
 }
 
 TEST(ReportJson, NonFiniteNumbersBecomeNullAndReadBackAsNan) {

@@ -27,6 +27,7 @@ inline regress::RunResult sample_run() {
   beauty.tiles_x = 4;
   beauty.tiles_y = 3;
   beauty.tile_z = {0.5f, -7.2f, 1, 0, 0, 0, 0, 0, 0, 0, 0, -2.5f};
+  beauty.tile_significant = {0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   LayerResult fog;
   fog.layer = "fog";
   fog.reasons = {"no variance channels"};
