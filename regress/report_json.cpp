@@ -14,7 +14,7 @@ namespace vesper::regress {
 // Regions are plain figures: written by nlohmann's field list (its NaN/Inf
 // dump as null), read back by read_region with JSON-path errors.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Region, x, y, width, height, z, p_value, golden_mean, new_mean,
-                                   relative_change)
+                                   relative_change);
 
 namespace {
 

@@ -119,6 +119,7 @@ TileGrid tile_tests(const LumaPlane& golden, const LumaPlane& fresh, int tile_si
   Level level{tile_size,
               (golden.width + tile_size - 1) / tile_size,
               (golden.height + tile_size - 1) / tile_size,
+              {},
               {}};
   for (int ty = 0; ty < level.ny; ++ty)
     for (int tx = 0; tx < level.nx; ++tx)

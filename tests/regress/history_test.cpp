@@ -8,19 +8,15 @@
 #include <filesystem>
 
 #include "regress/history.h"
+#include "regress_dir_test.h"
 #include "sample_results.h"
-#include "tests/common/temp_dir.h"
 
 namespace vesper::regress {
 namespace {
 
 namespace fs = std::filesystem;
 
-class HistoryTest : public ::testing::Test {
- protected:
-  test::TempDir tmp_{"regress"};
-  std::filesystem::path dir_ = tmp_.path();
-};
+using HistoryTest = test::RegressDirTest;
 
 RunResult run_with_time(const std::string& started_at, double seconds, bool reused = false) {
   RunResult run = test::sample_run();

@@ -6,20 +6,17 @@
 #include <fstream>
 
 #include "regress/load_frame.h"
+#include "regress_dir_test.h"
 #include "renderer/output/exr_io.h"
 #include "synthetic_images.h"
-#include "tests/common/temp_dir.h"
 
 namespace vesper::regress {
 namespace {
 
 namespace fs = std::filesystem;
 
-class LoadFrameTest : public ::testing::Test {
+class LoadFrameTest : public test::RegressDirTest {
  protected:
-  test::TempDir tmp_{"regress"};
-  std::filesystem::path dir_ = tmp_.path();
-
   void SetUp() override {
     write_exr(test::synthetic_image(16, 16, {{"beauty"}}, 1), dir_ / "golden.exr");
     write_exr(test::synthetic_image(16, 16, {{"beauty"}}, 2), dir_ / "new.exr");

@@ -10,6 +10,7 @@
 #include "common/json_error.h"
 #include "regress/report_json.h"
 #include "sample_results.h"
+#include "tests/common/temp_dir.h"
 
 namespace vesper::regress {
 namespace {
@@ -29,12 +30,11 @@ void expect_same(const RunResult& read, const RunResult& written) {
 
 TEST(ReportJson, RoundTripsEveryField) {
   const RunResult run = test::sample_run();
-  const auto dir = std::filesystem::temp_directory_path() / "vesper-report-json-test";
-  std::filesystem::create_directories(dir);
+  const test::TempDir dir("regress");
   write_report_json(run, dir / "report.json");
   expect_same(read_report_json(dir / "report.json"), run);
-  EXPECT_FALSE(std::filesystem::exists(dir / "report.json.tmp"));
-  std::filesystem::remove_all(dir);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}),
+            1);  // no temporary left
 }
 
 TEST(ReportJson, HasTheDocumentedKeys) {

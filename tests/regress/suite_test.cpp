@@ -6,18 +6,15 @@
 #include <fstream>
 
 #include "regress/suite.h"
-#include "tests/common/temp_dir.h"
+#include "regress_dir_test.h"
 
 namespace vesper::regress {
 namespace {
 
 namespace fs = std::filesystem;
 
-class SuiteTest : public ::testing::Test {
+class SuiteTest : public test::RegressDirTest {
  protected:
-  test::TempDir tmp_{"regress"};
-  std::filesystem::path dir_ = tmp_.path();
-
   void SetUp() override {
     fs::create_directories(dir_ / "cornell");
     std::ofstream(dir_ / "cornell" / "scene.json") << "{}";
