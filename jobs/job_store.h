@@ -84,6 +84,19 @@ class JobStore {
   // recorded yet: the frames that wait for a merge.
   std::vector<std::pair<int64_t, int>> frames_awaiting_merge() const;
 
+  // Frame outputs whose noise (FrameNoise, in the output's metadata) has not
+  // been read yet, by job and frame. An output recorded with a blob another
+  // frame's read output has (a reused result) takes its noise at once.
+  struct UnreadOutput {
+    int64_t job = 0;
+    int frame = 0;
+    std::string blob;
+  };
+  std::vector<UnreadOutput> outputs_without_noise() const;
+  // Records what a frame's output says of its noise, once (a second record
+  // changes nothing). Throws StoreError if the frame has no output.
+  void record_frame_noise(int64_t job, int frame, const FrameNoise& noise);
+
   struct Impl;
 
  private:
