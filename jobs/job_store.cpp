@@ -1,7 +1,6 @@
 #include "jobs/job_store.h"
 
 #include <algorithm>
-#include <cmath>
 #include <random>
 
 #include "jobs/job_store_impl.h"
@@ -55,19 +54,6 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
   return lease;
 }
 
-// Why `spec`'s budget is not acceptable, or empty.
-std::string budget_problem(const JobSpec& spec) {
-  const RenderBudget& b = spec.budget;
-  if (b.noise_target && !(*b.noise_target > 0 && std::isfinite(*b.noise_target)))
-    return "noise_target must be a positive number";
-  if (b.min_spp && !b.noise_target) return "min_spp needs a noise_target";
-  if (b.min_spp && (*b.min_spp < 1 || *b.min_spp > spec.spp))
-    return "min_spp must be in [1, spp = " + std::to_string(spec.spp) + "]";
-  if (b.time_limit && !(*b.time_limit > 0 && std::isfinite(*b.time_limit)))
-    return "time_limit must be a positive number of seconds";
-  return {};
-}
-
 }  // namespace
 
 JobStore::JobStore(const std::filesystem::path& file, StoreOptions options)
@@ -93,8 +79,8 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   for (const Asset& a : spec.assets)
     if (const std::string why = asset_name_problem(a.name); !why.empty())
       throw StoreError("job '" + spec.name + "': asset name '" + a.name + "' " + why);
-  if (const std::string why = budget_problem(spec); !why.empty())
-    throw StoreError("job '" + spec.name + "': " + why);
+  if (const auto why = budget_problem(spec.budget, spec.spp))
+    throw StoreError("job '" + spec.name + "': " + why->field + ": " + why->message);
   auto& db = impl_->db;
   sql::Transaction tx(db);
   const RenderBudget& b = spec.budget;
@@ -175,7 +161,8 @@ HeartbeatAnswer JobStore::heartbeat(const std::string& lease_id, double now) {
   return HeartbeatAnswer::KeepRunning;
 }
 
-bool JobStore::complete(const std::string& lease_id, const std::string& result, double now) {
+bool JobStore::complete(const std::string& lease_id, const std::string& result, double now,
+                        const std::optional<FrameNoise>& result_noise) {
   auto& db = impl_->db;
   sql::Transaction tx(db);
   const auto task = impl_->leased_task(lease_id);
@@ -187,7 +174,7 @@ bool JobStore::complete(const std::string& lease_id, const std::string& result, 
       .bind(2, result)
       .run();
   // A frame of one task: its result is the frame's output, recorded with the completion.
-  impl_->record_output_if_single_task_frame(*task, result, now);
+  impl_->record_output_if_single_task_frame(*task, result, now, result_noise);
   tx.commit();
   return true;
 }
@@ -360,15 +347,7 @@ std::vector<JobStore::UnreadOutput> JobStore::outputs_without_noise() const {
 void JobStore::record_frame_noise(int64_t job, int frame, const FrameNoise& noise) {
   auto& db = impl_->db;
   sql::Transaction tx(db);
-  sql::Stmt(db,
-            "UPDATE frame_outputs SET noise_read = 1, noise_reached = ?3, spp_mean = ?4, "
-            "stop_reason = ?5 WHERE job_id = ?1 AND frame = ?2 AND noise_read = 0")
-      .bind(1, job)
-      .bind(2, int64_t(frame))
-      .bind(3, noise.noise_reached)
-      .bind(4, noise.spp_mean)
-      .bind(5, noise.stop_reason)
-      .run();
+  impl_->record_noise(job, frame, noise);
   if (sqlite3_changes(db.get()) == 0) {
     sql::Stmt s(db, "SELECT 1 FROM frame_outputs WHERE job_id = ?1 AND frame = ?2");
     s.bind(1, job).bind(2, int64_t(frame));

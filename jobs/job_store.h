@@ -55,7 +55,10 @@ class JobStore {
   HeartbeatAnswer heartbeat(const std::string& lease_id, double now);
   // Both refuse (return false) a lease that is no longer current: expired,
   // re-leased, canceled. Committed results are never touched by stale calls.
-  bool complete(const std::string& lease_id, const std::string& result, double now);
+  // `result_noise`, when given, is what the result says of its noise: a
+  // one-task frame's output is recorded with it, in the same transaction.
+  bool complete(const std::string& lease_id, const std::string& result, double now,
+                const std::optional<FrameNoise>& result_noise = std::nullopt);
   bool fail(const std::string& lease_id, const std::string& log_tail, double now);
   // Requeues tasks whose lease expired (counted as a failed attempt).
   int expire_leases(double now);

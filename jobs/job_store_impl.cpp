@@ -119,10 +119,24 @@ std::string JobStore::Impl::record_output(int64_t job, int frame, const std::str
 }
 
 void JobStore::Impl::record_output_if_single_task_frame(const Task& task, const std::string& result,
-                                                        double now) {
+                                                        double now,
+                                                        const std::optional<FrameNoise>& noise) {
   const auto frame = frames(task.job_id, task.frame);
-  if (frame.size() == 1 && frame[0].tasks == 1 && frame[0].complete())
-    record_output(task.job_id, task.frame, result, now);
+  if (frame.size() != 1 || frame[0].tasks != 1 || !frame[0].complete()) return;
+  record_output(task.job_id, task.frame, result, now);
+  if (noise) record_noise(task.job_id, task.frame, *noise);
+}
+
+void JobStore::Impl::record_noise(int64_t job, int frame, const FrameNoise& noise) {
+  sql::Stmt(db,
+            "UPDATE frame_outputs SET noise_read = 1, noise_reached = ?3, spp_mean = ?4, "
+            "stop_reason = ?5 WHERE job_id = ?1 AND frame = ?2 AND noise_read = 0")
+      .bind(1, job)
+      .bind(2, int64_t(frame))
+      .bind(3, noise.noise_reached)
+      .bind(4, noise.spp_mean)
+      .bind(5, noise.stop_reason)
+      .run();
 }
 
 void JobStore::Impl::record_failure(int64_t task_id, int64_t job_id, const std::string& worker,

@@ -7,6 +7,38 @@
 
 namespace vesper {
 
+std::optional<BudgetProblem> budget_problem(const RenderBudget& b, int spp) {
+  auto positive = [](double v) { return v > 0 && std::isfinite(v); };
+  if (b.noise_target && !positive(*b.noise_target))
+    return BudgetProblem{"noise_target",
+                         "expected a positive number (the relative error of each "
+                         "pixel's mean to stop at), got " +
+                             std::to_string(*b.noise_target)};
+  if (b.min_spp && !b.noise_target)
+    return BudgetProblem{"min_spp",
+                         "min_spp needs a noise_target (without one every pixel takes "
+                         "the full spp)"};
+  if (b.min_spp && (*b.min_spp < 1 || *b.min_spp > spp))
+    return BudgetProblem{"min_spp", "expected an integer in [1, " + std::to_string(spp) +
+                                        "] (at most the frame's spp, or max_spp), got " +
+                                        std::to_string(*b.min_spp)};
+  if (b.time_limit && !positive(*b.time_limit))
+    return BudgetProblem{"time_limit", "expected a positive number of seconds, got " +
+                                           std::to_string(*b.time_limit)};
+  return std::nullopt;
+}
+
+std::optional<BudgetProblem> budget_problem(const BudgetRequest& r, int spp) {
+  if (r.max_spp && !r.budget.noise_target)
+    return BudgetProblem{"max_spp",
+                         "max_spp needs a noise_target (without one every pixel "
+                         "takes spp samples)"};
+  if (r.max_spp && *r.max_spp < 1)
+    return BudgetProblem{"max_spp",
+                         "expected a positive integer, got " + std::to_string(*r.max_spp)};
+  return budget_problem(r.budget, r.frame_spp(spp));
+}
+
 RenderBudget task_budget(const RenderBudget& frame, int frame_spp, int sample_begin,
                          int sample_end) {
   if (sample_begin < 0 || sample_begin >= sample_end || sample_end > frame_spp)

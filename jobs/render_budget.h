@@ -10,6 +10,7 @@
 // the merged frame meets the frame's budget (docs/farm.md, "Noise targets and
 // time limits").
 #include <optional>
+#include <string>
 
 namespace vesper {
 
@@ -29,6 +30,28 @@ struct RenderBudget {
   bool operator==(const RenderBudget&) const = default;
   bool empty() const { return !noise_target && !min_spp && !time_limit; }
 };
+
+// Why `budget` is not acceptable for frames of `spp` samples: the field at
+// fault ("noise_target", "min_spp" or "time_limit", the JSON key; the CLI
+// names its flag) and what was expected. nullopt when it is acceptable:
+// noise_target and time_limit positive and finite, min_spp only with a
+// noise target and in [1, spp].
+struct BudgetProblem {
+  const char* field;
+  std::string message;
+};
+std::optional<BudgetProblem> budget_problem(const RenderBudget& budget, int spp);
+
+// A budget as asked for (`vesper render`'s flags, a submit's keys): with a
+// noise target, max_spp (when given) is the frame's spp instead of spp.
+struct BudgetRequest {
+  RenderBudget budget;
+  std::optional<int> max_spp;
+  int frame_spp(int spp) const { return max_spp.value_or(spp); }
+  bool operator==(const BudgetRequest&) const = default;
+};
+// As above for the request's frame spp; also "max_spp" without a noise target.
+std::optional<BudgetProblem> budget_problem(const BudgetRequest& request, int spp);
 
 // The budget of the task rendering samples [sample_begin, sample_end) of a
 // frame of `frame_spp` samples under `frame`. With share f = (end - begin) /

@@ -22,6 +22,16 @@ inline constexpr std::array<const char*, 8> kRangeKeys{
     kSceneHash,       kSpp,           kSampleBegin,     kSampleEnd, kSeed,
     kRendererVersion, kRenderSeconds, kNonfiniteSamples};
 
+// Adaptive sampling and time limits, written by render() and by
+// merge_partials() (from the merged variance and per-pixel counts).
+inline constexpr char kNoiseTarget[] = "vesper:noise_target";  // when adaptive
+// RMS over pixels of the per-pixel relative error of the mean.
+inline constexpr char kNoiseReached[] = "vesper:noise_reached";
+inline constexpr char kSppMean[] = "vesper:spp_mean";
+// Why sampling stopped: spp, noise_target, max_spp or time_limit.
+inline constexpr char kStopReason[] = "vesper:stop_reason";
+inline constexpr char kTimeLimit[] = "vesper:time_limit";
+
 // render_frame(): the number of render passes (beauty + variant layers).
 inline constexpr char kPasses[] = "vesper:passes";
 // `vesper render --frame N`.

@@ -72,6 +72,24 @@ TEST(TaskBudget, ATimeLimitAloneIsSharedAndNothingElseIsSet) {
   EXPECT_THROW(task_budget(budget(0.1), 64, 32, 65), std::invalid_argument);
 }
 
+TEST(BudgetProblem, NamesTheFieldAtFault) {
+  auto field = [](const RenderBudget& b, int spp) -> std::string {
+    const auto p = budget_problem(b, spp);
+    return p ? p->field : "";
+  };
+  EXPECT_EQ(field(budget(0.01, 16, 10.0), 16), "");
+  EXPECT_EQ(field(RenderBudget{}, 1), "");
+  EXPECT_EQ(field(budget(0.0), 16), "noise_target");
+  EXPECT_EQ(field(budget(-0.5), 16), "noise_target");
+  EXPECT_EQ(field(budget(INFINITY), 16), "noise_target");
+  EXPECT_EQ(field(budget(std::nullopt, 4), 16), "min_spp");
+  EXPECT_EQ(field(budget(0.01, 17), 16), "min_spp");  // min_spp > max_spp
+  EXPECT_EQ(field(budget(0.01, 0), 16), "min_spp");
+  EXPECT_EQ(field(budget(0.01, std::nullopt, 0.0), 16), "time_limit");
+  EXPECT_EQ(field(budget(std::nullopt, std::nullopt, -3.0), 16), "time_limit");
+  EXPECT_NE(budget_problem(budget(0.01, 17), 16)->message.find("[1, 16]"), std::string::npos);
+}
+
 class BudgetStoreTest : public ::testing::Test {
  protected:
   static JobSpec spec(int spp, int split, RenderBudget b) {
@@ -177,6 +195,20 @@ TEST_F(BudgetStoreTest, AFramesNoiseIsRecordedOnceAndTravelsWithAReusedOutput) {
   EXPECT_EQ(s.frame(again, 1)->output, "exr-1");
   EXPECT_EQ(s.frame(again, 1)->noise, noise);
   EXPECT_TRUE(s.outputs_without_noise().empty());
+
+  // A completion can bring its result's noise: a one-task frame records it
+  // with its output; a task of a split frame has no output to give it to.
+  const int64_t direct = s.submit(spec(32, 0, budget(0.05)), 5);
+  const int64_t split = s.submit(spec(32, 16, budget(0.05)), 5);
+  const FrameNoise said{0.04, 12.0, "noise_target"};
+  for (int i = 0; i < 3; ++i) {
+    const auto t = s.lease("w", 6);
+    ASSERT_TRUE(t);
+    ASSERT_TRUE(s.complete(t->lease_id, "out-" + std::to_string(t->task.id), 7, said));
+  }
+  EXPECT_EQ(s.frame(direct, 1)->noise, said);
+  EXPECT_FALSE(s.frame(split, 1)->noise);  // its merge will have its own
+  EXPECT_EQ(s.frame(split, 1)->output, "");
 
   // An output that says nothing of its noise is read once all the same.
   const int64_t plain = s.submit(spec(8, 0, RenderBudget{}), 5);
