@@ -1,11 +1,18 @@
 #include "jobs/render_budget.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace vesper {
+
+std::string exact_text(double v) {
+  char buf[32];
+  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  return std::string(buf, end);
+}
 
 std::optional<BudgetProblem> budget_problem(const RenderBudget& b, int spp) {
   auto positive = [](double v) { return v > 0 && std::isfinite(v); };

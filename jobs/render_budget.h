@@ -53,6 +53,11 @@ struct BudgetRequest {
 // As above for the request's frame spp; also "max_spp" without a noise target.
 std::optional<BudgetProblem> budget_problem(const BudgetRequest& request, int spp);
 
+// The shortest decimal text that reads back as the same double: how a
+// budget's numbers are written into result-reuse keys and render command
+// lines, so equal text means equal values.
+std::string exact_text(double v);
+
 // The budget of the task rendering samples [sample_begin, sample_end) of a
 // frame of `frame_spp` samples under `frame`. With share f = (end - begin) /
 // frame_spp (1/J for J equal tasks):

@@ -1,21 +1,11 @@
 #include "jobs/result_reuse.h"
 
 #include <algorithm>
-#include <charconv>
 #include <vector>
 
 #include "jobs/job_store_impl.h"
 
 namespace vesper {
-
-namespace {
-// Shortest text that reads back as the same double: equal keys, equal values.
-std::string exact(double v) {
-  char buf[32];
-  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
-  return std::string(buf, end);
-}
-}  // namespace
 
 std::string inputs_key(const JobSpec& spec) {
   std::vector<std::string> assets;
@@ -24,9 +14,9 @@ std::string inputs_key(const JobSpec& spec) {
   std::string key = spec.scene + ";spp=" + std::to_string(spec.spp);
   // Only what is set, so a job without a budget keeps the key it always had.
   const RenderBudget& b = spec.budget;
-  if (b.noise_target) key += ";noise_target=" + exact(*b.noise_target);
+  if (b.noise_target) key += ";noise_target=" + exact_text(*b.noise_target);
   if (b.min_spp) key += ";min_spp=" + std::to_string(*b.min_spp);
-  if (b.time_limit) key += ";time_limit=" + exact(*b.time_limit);
+  if (b.time_limit) key += ";time_limit=" + exact_text(*b.time_limit);
   for (const auto& a : assets) key += ";" + a;
   return key;
 }

@@ -11,7 +11,10 @@
 namespace vesper::worker_detail {
 
 // `vesper render <scene_file> -o <output> --spp S --sample-begin B
-// --sample-end E --frame F [--partial] [--threads N]`. No --seed: the
+// --sample-end E --frame F [--partial] [--noise-target X] [--min-spp M]
+// [--time-limit T] [--threads N]`: the budget flags are the task's share of
+// its frame's budget, as the lease carries it (exact: the shortest text of
+// each double). No --seed: the
 // renderer takes the scene's own render.seed, and --frame decorrelates the
 // frames from it, exactly as a local `vesper render --frame F` does. No -q:
 // the render's plain progress lines on stderr feed the heartbeat's progress
