@@ -7,6 +7,13 @@
 
 namespace vesper::cli {
 
+// Adaptive sampling and budgets: --noise-target, --min-spp, --max-spp,
+// --time-limit (render.noise_target & co. in the scene; docs/sampling.md).
+struct SamplingFlags {
+  std::optional<double> noise_target, time_limit;
+  std::optional<int> min_spp, max_spp;
+};
+
 struct RenderCommandOptions {
   std::string scene;
   std::string output;
@@ -16,6 +23,7 @@ struct RenderCommandOptions {
   std::optional<std::string> aovs;  // comma-separated
   int sample_begin = 0;
   std::optional<int> sample_end;
+  SamplingFlags sampling;
   // Frame number: decorrelates the frame's noise from other frames (the seed
   // becomes frame_seed(seed, frame)) and is stamped as vesper:frame.
   std::optional<int> frame;

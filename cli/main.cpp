@@ -78,6 +78,21 @@ void add_quiet(CLI::App* sub, bool* field = nullptr) {
       "Quiet: print results only (no progress or info logs)");
 }
 
+void add_sampling_flags(CLI::App* c, SamplingFlags& f) {
+  c->add_option("--noise-target", f.noise_target,
+                "Adaptive sampling: a pixel stops once its estimated relative error of the mean "
+                "is below this (e.g. 0.02); overrides render.noise_target")
+      ->check(greater_than_zero());
+  c->add_option("--min-spp", f.min_spp, "Adaptive sampling: samples every pixel takes first")
+      ->check(at_least(1));
+  c->add_option("--max-spp", f.max_spp,
+                "Adaptive sampling: most samples per pixel (default: the spp)")
+      ->check(at_least(1));
+  c->add_option("--time-limit", f.time_limit,
+                "Stop sampling at the end of the pass in which this many seconds have passed")
+      ->check(greater_than_zero());
+}
+
 void add_render(CLI::App& app, Dispatch& dispatch) {
   auto o = std::make_shared<RenderCommandOptions>();
   auto* r = app.add_subcommand("render", "Render a vesper-scene/1 file to a multi-layer OpenEXR");
@@ -93,7 +108,9 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
   r->add_option(
       "--aov", o->aovs,
       "Extra AOVs, comma-separated: albedo, normal, depth, emission, diffuse_direct, "
-      "diffuse_indirect, specular_direct, specular_indirect, volume_direct, volume_indirect");
+      "diffuse_indirect, specular_direct, specular_indirect, volume_direct, volume_indirect, "
+      "variance (of the pixel mean), spp (samples taken)");
+  add_sampling_flags(r, o->sampling);
   r->add_option("--sample-begin", o->sample_begin,
                 "First sample index of this range (for split renders)")
       ->check(at_least(0));

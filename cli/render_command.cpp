@@ -91,13 +91,25 @@ int run_render(const RenderCommandOptions& o) {
   ro.sample_begin = o.sample_begin;
   ro.sample_end = o.sample_end;
   ro.keep_sums = o.partial;
-  const int spp = o.spp.value_or(desc.render.spp);
+  ro.noise_target = o.sampling.noise_target;
+  ro.time_limit = o.sampling.time_limit;
+  ro.min_spp = o.sampling.min_spp;
+  ro.max_spp = o.sampling.max_spp;
+  try {
+    check_sampling_options(desc.render, ro);
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("{}: {}", o.scene, e.what());
+    return 2;
+  }
+  const int spp = frame_spp(desc.render, ro);
   const auto range = sample_range(o, spp);
   if (!range) return 2;
 
   if (!o.quiet)
-    spdlog::info("{}: {}x{}, {} spp, {} shapes, {} lights, {} media, {} layers", o.scene,
-                 desc.film.width, desc.film.height, range->second - range->first,
+    spdlog::info("{}: {}x{}, {}{} spp, {} shapes, {} lights, {} media, {} layers", o.scene,
+                 desc.film.width, desc.film.height,
+                 ro.noise_target || desc.render.noise_target ? "up to " : "",
+                 range->second - range->first,
                  desc.shapes.size(), desc.lights.size(), desc.media.size(), desc.layers.size());
   Progress progress("render");
   if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
@@ -107,7 +119,7 @@ int run_render(const RenderCommandOptions& o) {
 
   try {
     if (o.partial)
-      write_partial(make_partial(result.image, std::move(result.sums), spp, out_path.string()),
+      write_partial(make_partial(result.image, std::move(result.film), spp, out_path.string()),
                     out_path);
     else
       output->write(result.image, out_path);
@@ -121,6 +133,14 @@ int run_render(const RenderCommandOptions& o) {
   if (!o.quiet)
     spdlog::info("wrote {} ({:.2f} s, {:.1f} Mrays/s)", out_path.string(), result.stats.seconds,
                  mrays);
+  if (!o.quiet && result.image.metadata.count(metadata_key::kStopReason))
+    spdlog::info("sampling stopped by {} after {} passes: {} spp on average, noise {}",
+                 result.image.metadata.at(metadata_key::kStopReason),
+                 result.image.metadata.at(metadata_key::kSamplingPasses),
+                 result.image.metadata.at(metadata_key::kSppMean),
+                 result.image.metadata.count(metadata_key::kNoiseReached)
+                     ? result.image.metadata.at(metadata_key::kNoiseReached)
+                     : "not measured");
   std::printf("%s\n", out_path.string().c_str());
   return 0;
 }

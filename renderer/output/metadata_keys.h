@@ -22,15 +22,20 @@ inline constexpr std::array<const char*, 8> kRangeKeys{
     kSceneHash,       kSpp,           kSampleBegin,     kSampleEnd, kSeed,
     kRendererVersion, kRenderSeconds, kNonfiniteSamples};
 
-// Adaptive sampling and time limits, written by render() and by
-// merge_partials() (from the merged variance and per-pixel counts).
-inline constexpr char kNoiseTarget[] = "vesper:noise_target";  // when adaptive
-// RMS over pixels of the per-pixel relative error of the mean.
+// Adaptive sampling and budgets (render.noise_target, render.time_limit).
+inline constexpr char kNoiseTarget[] = "vesper:noise_target";
+inline constexpr char kTimeLimit[] = "vesper:time_limit";
+// Figures of the samples taken, which differ between the partials of a frame:
+// a partial carries them in its metadata, and merge_partials() recomputes
+// (noise, spp) or combines (stop reason, passes) them for the merged frame.
+// noise_reached: RMS over pixels of the estimated relative error of the mean
+// (film_sums.h); spp_mean: mean samples per pixel.
 inline constexpr char kNoiseReached[] = "vesper:noise_reached";
 inline constexpr char kSppMean[] = "vesper:spp_mean";
-// Why sampling stopped: spp, noise_target, max_spp or time_limit.
 inline constexpr char kStopReason[] = "vesper:stop_reason";
-inline constexpr char kTimeLimit[] = "vesper:time_limit";
+inline constexpr char kSamplingPasses[] = "vesper:sampling_passes";
+inline constexpr std::array<const char*, 4> kPerRangeFigures{kNoiseReached, kSppMean, kStopReason,
+                                                             kSamplingPasses};
 
 // render_frame(): the number of render passes (beauty + variant layers).
 inline constexpr char kPasses[] = "vesper:passes";

@@ -15,17 +15,23 @@
 
 #include "common/json_parse.h"
 #include "common/json_reader.h"
+#include "renderer/output/partial_checks.h"
 #include "renderer/output/range_metadata.h"
+#include "renderer/sampling/sample_streams.h"
 
 namespace vesper {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace partial_checks;
 using nlohmann::json;
 
 constexpr char kMagic[] = "VESPER-PARTIAL\n";
 constexpr size_t kMagicSize = sizeof(kMagic) - 1;
-constexpr const char* kFormat = "vesper-partial/1";
+constexpr const char* kFormat = "vesper-partial/2";
+// Version 1 had no stream sums and no counts (every pixel took the whole range).
+constexpr const char* kFormatV1 = "vesper-partial/1";
+constexpr size_t kStreams = size_t(kSampleStreams);
 constexpr const char* kEncoding = "int128-le-q64";
 constexpr size_t kMaxHeaderBytes = size_t(16) << 20;
 constexpr int kMaxDimension = 1 << 16;
@@ -36,16 +42,32 @@ bool is_range_key(const std::string& k) {
   return std::any_of(keys.begin(), keys.end(), [&](const char* r) { return k == r; });
 }
 
-[[noreturn]] void fail(const std::string& source, const std::string& what) {
-  throw PartialError(source + ": " + what);
+// Bytes of the uncompressed body: sums, then stream sums, then counts.
+size_t body_bytes(const Partial& p, bool variance) {
+  return pixel_count(p) *
+         (p.channels.size() * 16 + (variance ? kStreams * 3 * 16 : 0) + kStreams * 4);
 }
 
-std::string range_text(const Partial& p) {
-  return "[" + std::to_string(p.sample_begin) + ", " + std::to_string(p.sample_end) + ")";
+void append_counts(std::vector<unsigned char>& bytes, const std::vector<uint32_t>& counts) {
+  for (uint32_t c : counts)
+    for (int b = 0; b < 4; ++b) bytes.push_back((unsigned char)((c >> (8 * b)) & 0xff));
 }
 
-size_t sum_count(int width, int height, size_t channels) {
-  return size_t(width) * size_t(height) * channels;
+std::vector<uint32_t> decode_counts(const unsigned char* bytes, size_t count) {
+  std::vector<uint32_t> counts(count);
+  for (size_t i = 0; i < count; ++i)
+    for (int b = 3; b >= 0; --b) counts[i] = (counts[i] << 8) | bytes[i * 4 + size_t(b)];
+  return counts;
+}
+
+// A version-1 partial's counts: every pixel took its whole range.
+std::vector<uint32_t> uniform_counts(const Partial& p) {
+  std::vector<uint32_t> per_stream(kStreams, 0);
+  for (int s = p.sample_begin; s < p.sample_end; ++s)
+    ++per_stream[size_t(sample_stream(uint64_t(s)))];
+  std::vector<uint32_t> counts(pixel_count(p) * kStreams);
+  for (size_t i = 0; i < counts.size(); ++i) counts[i] = per_stream[i % kStreams];
+  return counts;
 }
 
 // Two's complement, little endian, 16 bytes per sum.
@@ -130,17 +152,27 @@ void parse_sample_range(JsonReader& h, Partial& p) {
 
 // The header line (docs/partial-format.md): everything but the sums. Throws
 // JsonError naming `label` and the JSON path of the offending key.
-Partial parse_header(const json& j, const std::string& label, SumsLayout& sums) {
+Partial parse_header(const json& j, const std::string& label, SumsLayout& sums, bool& version1,
+                     bool& variance) {
   JsonReader h(j, label, "");
   h.expect_object();
   // The format decides what the rest means, so it is checked first.
   const JsonReader format = h.child("format");
-  if (format.as_string() != kFormat)
+  version1 = format.as_string() == kFormatV1;
+  if (format.as_string() != kFormat && !version1)
     format.fail("unsupported format '" + format.as_string() + "' (this build reads " + kFormat +
-                ")");
+                " and " + kFormatV1 + ")");
   h.allow_keys({"format", "width", "height", "channels", "sample_begin", "sample_end", "frame_spp",
                 "seed", "scene_hash", "renderer_version", "nonfinite_samples", "render_seconds",
-                "metadata", "sums"});
+                "metadata", "sums", "streams", "variance"});
+  variance = false;
+  if (!version1) {
+    const JsonReader streams = h.child("streams");
+    if (streams.as_integer(1, 1 << 16) != int64_t(kStreams))
+      streams.fail("this build samples in " + std::to_string(kStreams) + " streams, not " +
+                   streams.json().dump());
+    variance = h.boolean("variance", false);
+  }
   Partial p;
   p.width = int(h.integer("width", 1, kMaxDimension));
   p.height = int(h.integer("height", 1, kMaxDimension));
@@ -217,6 +249,8 @@ std::string header_line(const Partial& p, size_t raw_bytes, size_t compressed_by
   h["nonfinite_samples"] = p.nonfinite_samples;
   h["render_seconds"] = p.render_seconds;
   h["metadata"] = p.metadata;
+  h["streams"] = kStreams;
+  h["variance"] = !p.stream_sums.empty();
   h["sums"] = {{"encoding", kEncoding},
                {"compression", "zlib"},
                {"bytes", raw_bytes},
@@ -225,77 +259,21 @@ std::string header_line(const Partial& p, size_t raw_bytes, size_t compressed_by
   return h.dump() + "\n";
 }
 
-void check_sums_size(const Partial& p) {
-  if (p.sums.size() != sum_count(p.width, p.height, p.channels.size()))
-    fail(p.source, "holds " + std::to_string(p.sums.size()) + " sums, expected " +
-                       std::to_string(p.width) + "x" + std::to_string(p.height) + "x" +
-                       std::to_string(p.channels.size()) + " = " +
-                       std::to_string(sum_count(p.width, p.height, p.channels.size())));
-}
-
-// `p` must be a partial of the same frame as `ref`; the error names both.
-void check_same_frame(const Partial& p, const Partial& ref) {
-  auto differ = [&](const std::string& what, const std::string& mine, const std::string& theirs) {
-    fail(p.source, what + " " + mine + " differs from " + ref.source + "'s " + theirs +
-                       ": not partials of one frame");
-  };
-  if (p.width != ref.width || p.height != ref.height)
-    differ("image size", std::to_string(p.width) + "x" + std::to_string(p.height),
-           std::to_string(ref.width) + "x" + std::to_string(ref.height));
-  if (p.channels != ref.channels) {
-    auto join = [](const std::vector<std::string>& v) {
-      std::string s;
-      for (const auto& c : v) s += (s.empty() ? "" : ",") + c;
-      return s;
-    };
-    differ("channel list", join(p.channels), join(ref.channels));
-  }
-  if (p.seed != ref.seed) differ("seed", std::to_string(p.seed), std::to_string(ref.seed));
-  if (p.scene_hash != ref.scene_hash)
-    differ("scene hash", p.scene_hash, ref.scene_hash + " (a different scene)");
-  if (p.renderer_version != ref.renderer_version)
-    differ("renderer version", p.renderer_version, ref.renderer_version);
-  if (p.frame_spp != ref.frame_spp)
-    differ("frame spp", std::to_string(p.frame_spp), std::to_string(ref.frame_spp));
-  std::set<std::string> keys;
-  for (const auto& [k, v] : p.metadata) keys.insert(k);
-  for (const auto& [k, v] : ref.metadata) keys.insert(k);
-  for (const std::string& k : keys) {
-    const auto a = p.metadata.find(k), b = ref.metadata.find(k);
-    const std::string va = a == p.metadata.end() ? "(absent)" : "'" + a->second + "'";
-    const std::string vb = b == ref.metadata.end() ? "(absent)" : "'" + b->second + "'";
-    if (va != vb) differ("metadata " + k, va, vb);
-  }
-}
-
-// The partials in sample order; their ranges must tile one contiguous range
-// [begin, end) without overlap.
-std::vector<size_t> tiling_order(const std::vector<Partial>& parts) {
-  std::vector<size_t> order(parts.size());
-  std::iota(order.begin(), order.end(), size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return parts[a].sample_begin < parts[b].sample_begin;
-  });
-  for (size_t i = 1; i < order.size(); ++i) {
-    const Partial& prev = parts[order[i - 1]];
-    const Partial& next = parts[order[i]];
-    if (next.sample_begin < prev.sample_end)
-      throw PartialError(next.source + ": sample range " + range_text(next) + " overlaps " +
-                         prev.source + "'s " + range_text(prev) +
-                         ": a sample would be counted twice");
-    if (next.sample_begin > prev.sample_end)
-      throw PartialError("samples [" + std::to_string(prev.sample_end) + ", " +
-                         std::to_string(next.sample_begin) + ") are missing between " +
-                         prev.source + " " + range_text(prev) + " and " + next.source + " " +
-                         range_text(next) + ": the ranges must tile one contiguous range");
-  }
-  return order;
-}
-
 }  // namespace
 
-Partial make_partial(const LayeredImage& image, std::vector<ExactSum> sums, int frame_spp,
-                     std::string source) {
+FilmSums Partial::film() const {
+  FilmSums f;
+  f.width = width;
+  f.height = height;
+  f.channels = channels;
+  f.has_variance = !stream_sums.empty();
+  f.sums = sums;
+  f.stream_sums = stream_sums;
+  f.counts = counts;
+  return f;
+}
+
+Partial make_partial(const LayeredImage& image, FilmSums film, int frame_spp, std::string source) {
   Partial p;
   p.source = std::move(source);
   p.width = image.width;
@@ -320,14 +298,21 @@ Partial make_partial(const LayeredImage& image, std::vector<ExactSum> sums, int 
   p.renderer_version = key(metadata_key::kRendererVersion);
   for (const auto& [k, v] : image.metadata)
     if (!is_range_key(k)) p.metadata[k] = v;
-  p.sums = std::move(sums);
+  if (film.channels != image.channels || film.width != image.width || film.height != image.height)
+    fail(p.source, "the film's sums are not of this image (channels or size differ)");
+  p.sums = std::move(film.sums);
+  p.stream_sums = std::move(film.stream_sums);
+  p.counts = std::move(film.counts);
   check_sums_size(p);
   return p;
 }
 
 void write_partial(const Partial& p, const fs::path& path) {
   check_sums_size(p);
-  const std::vector<unsigned char> raw = encode_sums(p.sums);
+  std::vector<unsigned char> raw = encode_sums(p.sums);
+  const std::vector<unsigned char> streams = encode_sums(p.stream_sums);
+  raw.insert(raw.end(), streams.begin(), streams.end());
+  append_counts(raw, p.counts);
   uLongf compressed_size = compressBound(uLong(raw.size()));
   std::vector<unsigned char> compressed(compressed_size);
   if (compress2(compressed.data(), &compressed_size, raw.data(), uLong(raw.size()), 6) != Z_OK)
@@ -366,67 +351,36 @@ Partial read_partial(const fs::path& path) {
   const std::string line = read_header_line(f, src);
   Partial p;
   SumsLayout layout;
+  bool version1 = false, variance = false;
   try {
     const std::string label = src + " header";
-    p = parse_header(parse_json(line, label), label, layout);
+    p = parse_header(parse_json(line, label), label, layout, version1, variance);
   } catch (const JsonError& e) {
     throw PartialError(e.what());
   }
   p.source = src;
-  const size_t count = sum_count(p.width, p.height, p.channels.size());
-  if (layout.bytes != uint64_t(count) * 16)
+  const size_t count = sum_count(p);
+  const size_t expected = version1 ? count * 16 : body_bytes(p, variance);
+  if (layout.bytes != expected)
     fail(src, "size mismatch: header says " + std::to_string(layout.bytes) +
                   " bytes of sums, but " + std::to_string(p.width) + "x" +
                   std::to_string(p.height) + " pixels x " + std::to_string(p.channels.size()) +
-                  " channels x 16 bytes = " + std::to_string(count * 16));
+                  " channels" +
+                  (version1   ? ""
+                   : variance ? " with stream sums and counts"
+                              : " with counts") +
+                  " make " + std::to_string(expected));
   const std::vector<unsigned char> raw =
       decompress_sums(read_compressed_sums(f, src, layout.compressed_bytes), layout, src);
   p.sums = decode_sums(raw.data(), count);
+  if (version1) {
+    p.counts = uniform_counts(p);
+    return p;
+  }
+  const size_t streams = variance ? pixel_count(p) * kStreams * 3 : 0;
+  p.stream_sums = decode_sums(raw.data() + count * 16, streams);
+  p.counts = decode_counts(raw.data() + (count + streams) * 16, pixel_count(p) * kStreams);
   return p;
-}
-
-LayeredImage merge_partials(const std::vector<Partial>& parts) {
-  if (parts.empty()) throw PartialError("merge: no partial renders given");
-  const Partial& ref = parts.front();
-  for (const Partial& p : parts) {
-    check_sums_size(p);
-    if (p.sample_end <= p.sample_begin) fail(p.source, "empty sample range " + range_text(p));
-    if (&p != &ref) check_same_frame(p, ref);
-  }
-  const std::vector<size_t> order = tiling_order(parts);
-  const int begin = parts[order.front()].sample_begin;
-  const int end = parts[order.back()].sample_end;
-  const int64_t count = int64_t(end) - begin;
-  if (count > kMaxExactSamples)
-    throw PartialError("merge: " + std::to_string(count) + " samples per pixel; at most " +
-                       std::to_string(kMaxExactSamples) + " fit the exact sums");
-
-  std::vector<ExactSum> total(ref.sums.size(), 0);
-  uint64_t nonfinite = 0;
-  double seconds = 0;
-  for (size_t i : order) {  // integer sums: the order does not matter
-    const Partial& p = parts[i];
-    for (size_t k = 0; k < total.size(); ++k) total[k] += p.sums[k];
-    nonfinite += p.nonfinite_samples;
-    seconds += p.render_seconds;
-  }
-
-  LayeredImage img;
-  img.width = ref.width;
-  img.height = ref.height;
-  img.channels = ref.channels;
-  img.pixels.resize(total.size());
-  for (size_t k = 0; k < total.size(); ++k) img.pixels[k] = exact_mean(total[k], count);
-  img.metadata = ref.metadata;
-  set_range_metadata(img.metadata, {.scene_hash = ref.scene_hash,
-                                    .renderer_version = ref.renderer_version,
-                                    .spp = int(count),
-                                    .sample_begin = begin,
-                                    .sample_end = end,
-                                    .seed = ref.seed,
-                                    .render_seconds = seconds,
-                                    .nonfinite_samples = nonfinite});
-  return img;
 }
 
 }  // namespace vesper

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "renderer/output/exact_sum.h"
+#include "renderer/output/film_sums.h"
 #include "renderer/output/layered_image.h"
 
 namespace vesper {
@@ -33,12 +34,19 @@ struct Partial {
   std::map<std::string, std::string> metadata;
   // Fixed-point sums, (y * width + x) * channels.size() + c.
   std::vector<ExactSum> sums;
+  // Per pixel and sample stream (film_sums.h): the beauty's R, G, B sums
+  // (only when the frame has variance channels or sampled adaptively) and the
+  // sample counts.
+  std::vector<ExactSum> stream_sums;
+  std::vector<uint32_t> counts;
+
+  FilmSums film() const;  // the sums as a film (copies)
 };
 
 // A partial from a frame rendered with RenderOptions::keep_sums (the image's
 // metadata gives the range, seed, scene hash, ...). Throws PartialError if
 // the metadata lacks a key render() writes or the sums do not match the image.
-Partial make_partial(const LayeredImage& image, std::vector<ExactSum> sums, int frame_spp,
+Partial make_partial(const LayeredImage& image, FilmSums film, int frame_spp,
                      std::string source = "render");
 
 // Writes atomically (temporary file beside `path`, then rename).
@@ -48,9 +56,11 @@ void write_partial(const Partial& partial, const std::filesystem::path& path);
 Partial read_partial(const std::filesystem::path& path);
 
 // The frame of the union of the partials' sample ranges, bitwise identical to
-// a single render of that range: same channels, pixels = exact_mean(sum of
-// sums, sample count), metadata as render() writes it (spp, sample_begin/end
-// of the union; render_seconds and nonfinite_samples summed).
+// a single render of that range: same channels, pixels resolved from the
+// summed film (resolve_image: exact_mean(sum of sums, sum of counts), the
+// variance from the summed stream sums), metadata as render() writes it (spp,
+// sample_begin/end of the union; render_seconds and nonfinite_samples summed;
+// noise reached and mean spp recomputed).
 // Throws PartialError (naming the partials' sources) unless the partials are
 // of one frame (size, channels, seed, scene hash, renderer version, frame spp,
 // other metadata) and their ranges tile one contiguous range without overlap.

@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "renderer/integrator/path_record.h"
+#include "renderer/output/film_sums.h"
 #include "renderer/scene/aov_names.h"
 
 namespace vesper {
@@ -39,6 +40,8 @@ std::vector<FirstEvent> transport_events(Aov a) {
     case Aov::Albedo:
     case Aov::Normal:
     case Aov::Depth:
+    case Aov::Variance:
+    case Aov::Spp:
       break;
   }
   return {};
@@ -54,6 +57,10 @@ void add_aov(ChannelLayout& l, Aov a, const std::vector<int>& all_groups) {
   } else if (a == Aov::Normal) {
     l.normal = int(l.names.size());
     l.names.insert(l.names.end(), {"normal.X", "normal.Y", "normal.Z"});
+  } else if (a == Aov::Variance) {
+    l.names.insert(l.names.end(), kVarianceChannels.begin(), kVarianceChannels.end());
+  } else if (a == Aov::Spp) {
+    l.names.push_back(kSppChannel);
   } else if (a == Aov::Depth) {
     l.depth = int(l.names.size());
     l.names.push_back("depth.Z");

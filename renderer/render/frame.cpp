@@ -129,7 +129,18 @@ FrameResult render_frame(const SceneDescription& desc, const RenderOptions& opti
   RenderResult beauty = render(build_scene(desc), base);
   frame.image = std::move(beauty.image);
   frame.stats = beauty.stats;
-  frame.sums = std::move(beauty.sums);
+  frame.film = std::move(beauty.film);
+  // With adaptive sampling the variant layers take the beauty's per-pixel
+  // counts, so that every layer of the frame averages the same samples.
+  // (An adaptive render always has the spp channel; a float holds counts exactly.)
+  std::vector<int64_t> beauty_counts;
+  const int spp_channel = frame.image.channel_index(kSppChannel);
+  if (spp_channel >= 0 && frame.image.metadata.count(metadata_key::kStopReason)) {
+    beauty_counts.resize(size_t(frame.image.width) * size_t(frame.image.height));
+    for (size_t p = 0; p < beauty_counts.size(); ++p)
+      beauty_counts[p] =
+          int64_t(frame.image.pixels[p * frame.image.channel_count() + size_t(spp_channel)]);
+  }
   for (const LayerDesc* layer : variants) {
     ++pass_index;
     const SceneDescription vdesc = apply_variant(desc, *layer->variant);
@@ -137,6 +148,7 @@ FrameResult render_frame(const SceneDescription& desc, const RenderOptions& opti
     vo.aovs = std::vector<Aov>{};
     vo.layers = {{layer->name, layer->paths, layer->lights, layer_has_alpha(*layer, vdesc)}};
     vo.on_progress = progress;
+    if (!beauty_counts.empty()) vo.pixel_samples = &beauty_counts;
     const RenderResult r = render(build_scene(vdesc), vo);
     const size_t pixels = size_t(r.image.width) * size_t(r.image.height);
     const size_t nd = frame.image.channel_count(), ns = r.image.channel_count();
@@ -144,9 +156,10 @@ FrameResult render_frame(const SceneDescription& desc, const RenderOptions& opti
     append_interleaved(frame.image.pixels, nd, select_interleaved(r.image.pixels, ns, keep, pixels),
                        keep.size(), pixels);
     if (options.keep_sums)
-      append_interleaved(frame.sums, nd, select_interleaved(r.sums, ns, keep, pixels), keep.size(),
-                         pixels);
+      append_interleaved(frame.film.sums, nd, select_interleaved(r.film.sums, ns, keep, pixels),
+                         keep.size(), pixels);
     for (size_t k : keep) frame.image.channels.push_back(r.image.channels[k]);
+    if (options.keep_sums) frame.film.channels = frame.image.channels;
     frame.stats.seconds += r.stats.seconds;
     frame.stats.rays += r.stats.rays;
     frame.stats.camera_samples += r.stats.camera_samples;

@@ -11,9 +11,9 @@ struct FrameResult {
   LayeredImage image;
   RenderStats stats;  // summed over the beauty pass and every variant pass
   int passes = 1;
-  // With RenderOptions::keep_sums: the exact sample sums of every channel of
-  // `image` (same layout and channel order, see RenderResult::sums).
-  std::vector<ExactSum> sums;
+  // With RenderOptions::keep_sums: the exact film state of every channel of
+  // `image` (same layout and channel order, see RenderResult::film).
+  FilmSums film;
 };
 
 // `options.layers` is ignored: the layers come from desc.layers. Progress is

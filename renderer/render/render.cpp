@@ -8,37 +8,20 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <stdexcept>
 
-#include "renderer/integrator/path_tracer.h"
 #include "renderer/output/range_metadata.h"
 #include "renderer/render/channel_layout.h"
-#include "renderer/sampling/pixel_filter.h"
+#include "renderer/render/pixel_sampler.h"
+#include "renderer/render/sampling_plan.h"
 
 namespace vesper {
 namespace {
 
 constexpr int kTileSize = 16;
+using Clock = std::chrono::steady_clock;
 
-// Samples [begin, end) of every pixel; a pixel's samples depend only on
-// (seed, pixel, sample index).
-struct SampleRange {
-  int begin = 0, end = 0;
-  int count = 0;  // max(0, end - begin): the divisor of every pixel mean
-  uint64_t seed = 0;
-};
-
-SampleRange sample_range(const Scene& scene, const RenderOptions& options) {
-  SampleRange r;
-  r.begin = options.sample_begin;
-  r.end = options.sample_end.value_or(options.spp.value_or(scene.render.spp));
-  r.count = std::max(0, r.end - r.begin);
-  r.seed = options.seed.value_or(scene.render.seed);
-  if (r.count > kMaxExactSamples)
-    throw std::invalid_argument(
-        "render: " + std::to_string(r.count) + " samples per pixel in one range; at most " +
-        std::to_string(kMaxExactSamples) + " fit the exact sample sums (split the range)");
-  return r;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& options,
@@ -51,146 +34,261 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   return pt;
 }
 
-// What every tile of one render shares.
-struct TileContext {
-  const Scene& scene;
-  const ChannelLayout& layout;
+// One pass over the tiles: each pixel is brought to its target sample count.
+struct Pass {
+  const PixelSamplerContext& pixel;
   const PathTracerOptions& pt;
-  SampleRange range;
-  int tiles_x = 0;
-  LayeredImage& image;
-  std::vector<ExactSum>* sums;  // null unless RenderOptions::keep_sums
+  int height = 0, tiles_x = 0, tiles_y = 0;
+  bool variance = false;  // keep stream sums
+  // Film mode: the sums persist across passes (adaptive, time limit, partials).
+  FilmSums* film = nullptr;
+  // Local mode (one pass, no sums kept): each pixel is resolved into image right away.
+  LayeredImage* image = nullptr;
+  const std::vector<int64_t>* targets = nullptr;  // per pixel; null = uniform
+  int64_t uniform_target = 0;
+
+  int64_t target(size_t p) const { return targets ? (*targets)[p] : uniform_target; }
+  size_t tiles() const { return size_t(tiles_x) * size_t(tiles_y); }
 };
 
-struct TileCounts {
-  uint64_t rays = 0, nonfinite = 0;
+// Per-thread sums of one pixel in local mode.
+struct ScratchPixel {
+  std::vector<ExactSum> sums, stream_sums;
+  std::vector<uint32_t> counts;
+  explicit ScratchPixel(size_t channels)
+      : sums(channels), stream_sums(size_t(kSampleStreams) * 3), counts(kSampleStreams) {}
+  PixelSums clear(bool variance) {
+    std::fill(sums.begin(), sums.end(), ExactSum(0));
+    std::fill(stream_sums.begin(), stream_sums.end(), ExactSum(0));
+    std::fill(counts.begin(), counts.end(), 0u);
+    return {sums.data(), variance ? stream_sums.data() : nullptr, counts.data()};
+  }
 };
 
-// Adds one camera sample's values to the pixel's sums. A non-finite radiance
-// would poison the whole pixel: it is dropped, and false returned so that it is counted.
-bool accumulate(std::vector<ExactSum>& acc, const PathResult& r, const PathRecord& record,
-                const ChannelLayout& layout) {
-  const bool finite = r.radiance.is_finite();
-  if (finite) {
-    acc[0] += to_fixed(r.radiance.r);
-    acc[1] += to_fixed(r.radiance.g);
-    acc[2] += to_fixed(r.radiance.b);
-    for (const BinOutput& o : layout.bin_outputs) {
-      Rgb sum;
-      for (size_t b : o.bins) sum += record.bins()[b];
-      for (int c = 0; c < 3; ++c) acc[size_t(o.channel + c)] += to_fixed(sum[c]);
-    }
-  }
-  acc[3] += to_fixed(r.alpha);
-  for (const BinOutput& o : layout.bin_outputs)
-    if (o.alpha_channel >= 0 && std::isfinite(r.camera_transmittance))
-      acc[size_t(o.alpha_channel)] += to_fixed(float(1.0 - r.camera_transmittance));
-  if (layout.albedo >= 0 && r.albedo.is_finite())
-    for (int c = 0; c < 3; ++c) acc[size_t(layout.albedo + c)] += to_fixed(r.albedo[c]);
-  if (layout.normal >= 0 && is_finite(r.normal))
-    for (int c = 0; c < 3; ++c) acc[size_t(layout.normal + c)] += to_fixed(r.normal[c]);
-  if (layout.depth >= 0 && std::isfinite(r.depth)) acc[size_t(layout.depth)] += to_fixed(r.depth);
-  return finite;
-}
-
-// Every sample of pixel (x, y) into `acc`, then the pixel's means (and sums) into the output.
-void render_pixel(const TileContext& c, int x, int y, const PathTracerOptions& pt,
-                  const PathRecord& record, std::vector<ExactSum>& acc, TileCounts& counts) {
-  std::fill(acc.begin(), acc.end(), ExactSum(0));
-  const uint64_t pixel_index = uint64_t(y) * uint64_t(c.image.width) + uint64_t(x);
-  for (int s = c.range.begin; s < c.range.end; ++s) {
-    Sampler sampler(c.range.seed, pixel_index, uint64_t(s));
-    const Vec2 offset = sample_pixel_filter(c.scene.film.filter, sampler.next2());
-    const Vec2 u_lens = sampler.next2();
-    const Ray ray =
-        c.scene.camera.generate_ray(float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y, u_lens);
-    const PathResult r = trace_path(c.scene, ray, sampler, pt);
-    counts.rays += r.rays;
-    if (!accumulate(acc, r, record, c.layout)) ++counts.nonfinite;
-  }
-  const size_t base = size_t(pixel_index) * acc.size();
-  for (size_t k = 0; k < acc.size(); ++k)
-    c.image.pixels[base + k] = exact_mean(acc[k], c.range.count);
-  if (c.sums) std::copy(acc.begin(), acc.end(), c.sums->begin() + ptrdiff_t(base));
-}
-
-TileCounts render_tile(const TileContext& c, size_t tile) {
+SampleCounts render_tile(const Pass& pass, size_t tile) {
   set_flush_to_zero();
-  const int tx = int(tile % size_t(c.tiles_x)), ty = int(tile / size_t(c.tiles_x));
-  TileCounts counts;
-  std::vector<ExactSum> acc(c.layout.names.size());
+  const PixelSamplerContext& c = pass.pixel;
+  const size_t nc = c.layout.names.size();
+  const DerivedChannels derived = find_derived_channels(c.layout.names);
+  ScratchPixel scratch(nc);
   PathRecord record(int(c.scene.group_names.size()));
-  PathTracerOptions pt = c.pt;
+  PathTracerOptions pt = pass.pt;
   if (!c.layout.bin_outputs.empty()) pt.record = &record;
-  const int w = c.image.width, h = c.image.height;
-  for (int y = ty * kTileSize; y < std::min(h, (ty + 1) * kTileSize); ++y)
-    for (int x = tx * kTileSize; x < std::min(w, (tx + 1) * kTileSize); ++x)
-      render_pixel(c, x, y, pt, record, acc, counts);
+  const int tx = int(tile % size_t(pass.tiles_x)), ty = int(tile / size_t(pass.tiles_x));
+  SampleCounts counts;
+  for (int y = ty * kTileSize; y < std::min(pass.height, (ty + 1) * kTileSize); ++y)
+    for (int x = tx * kTileSize; x < std::min(c.width, (tx + 1) * kTileSize); ++x) {
+      const size_t p = size_t(y) * size_t(c.width) + size_t(x);
+      const int64_t target = pass.target(p);
+      if (pass.film) {
+        const PixelSums px = pass.film->pixel(p);
+        counts += sample_pixel(c, x, y, sample_count(px.counts), target, pt, record, px);
+      } else {
+        const PixelSums px = scratch.clear(pass.variance);
+        counts += sample_pixel(c, x, y, 0, target, pt, record, px);
+        resolve_pixel({px.sums, px.stream_sums, px.counts}, nc, derived,
+                      pass.image->pixels.data() + p * nc);
+      }
+    }
   return counts;
 }
 
-// All tiles over TBB (options.threads, 0 = all), reporting progress after each.
-TileCounts render_tiles(const TileContext& c, const RenderOptions& options) {
-  const int tiles_y = (c.image.height + kTileSize - 1) / kTileSize;
-  const size_t tiles_total = size_t(c.tiles_x) * size_t(tiles_y);
-  std::atomic<size_t> tiles_done{0};
-  std::atomic<uint64_t> rays{0}, nonfinite{0};
-  const int threads =
-      options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
-  tbb::task_arena arena(threads);
+// All tiles over TBB (`threads`, 0 = all); `after_tile` is called after each.
+template <typename AfterTile>
+SampleCounts run_pass(const Pass& pass, int threads, AfterTile&& after_tile) {
+  std::atomic<uint64_t> camera{0}, rays{0}, nonfinite{0};
+  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles_total, 1),
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pass.tiles(), 1),
                       [&](const tbb::blocked_range<size_t>& r) {
                         for (size_t t = r.begin(); t != r.end(); ++t) {
-                          const TileCounts n = render_tile(c, t);
+                          const SampleCounts n = render_tile(pass, t);
+                          camera += n.camera_samples;
                           rays += n.rays;
                           nonfinite += n.nonfinite;
-                          const size_t done = ++tiles_done;
-                          if (options.on_progress) options.on_progress(done, tiles_total);
+                          after_tile(n);
                         }
                       });
   });
-  return {rays, nonfinite};
+  return {camera, rays, nonfinite};
+}
+
+// The next pass's per-pixel targets, or nothing when sampling is done (and why).
+struct NextPass {
+  std::vector<int64_t> targets;
+  bool any = false;
+};
+
+NextPass plan_next_pass(const FilmSums& film, const SamplingPlan& plan, double elapsed,
+                        double last_pass_seconds, uint64_t last_pass_samples, StopReason& why) {
+  NextPass next;
+  const std::vector<PixelState> state = pixel_states(film, plan.noise_target, plan.cap);
+  next.targets.resize(film.pixel_count());
+  uint64_t planned = 0;
+  bool capped = false;
+  for (size_t p = 0; p < state.size(); ++p) {
+    const int64_t n = sample_count(film.pixel(p).counts);
+    next.targets[p] = state[p] == PixelState::Active ? next_sample_count(n, plan.cap) : n;
+    planned += uint64_t(next.targets[p] - n);
+    capped |= state[p] == PixelState::Capped;
+  }
+  if (planned == 0) {
+    why = !plan.noise_target ? StopReason::Spp
+          : capped           ? StopReason::MaxSpp
+                             : StopReason::NoiseTarget;
+    return next;
+  }
+  if (plan.time_limit) {
+    // Stop at the end of the pass in which the budget ran out, and shrink the
+    // next pass so that it ends near the budget.
+    const double left = *plan.time_limit - elapsed;
+    if (left <= 0) {
+      why = StopReason::TimeLimit;
+      return next;
+    }
+    const double rate = double(last_pass_samples) / std::max(last_pass_seconds, 1e-6);
+    const double fraction = left * rate / double(planned);
+    if (fraction < 1)
+      for (size_t p = 0; p < state.size(); ++p) {
+        const int64_t n = sample_count(film.pixel(p).counts);
+        const int64_t add = next.targets[p] - n;
+        if (add > 0) next.targets[p] = n + std::max<int64_t>(1, int64_t(double(add) * fraction));
+      }
+  }
+  next.any = true;
+  return next;
+}
+
+// Adaptive or time-limited sampling: passes over the film until plan_next_pass says stop.
+template <typename AfterTile>
+SampleCounts run_passes(Pass& pass, const SamplingPlan& plan, int threads, Clock::time_point t0,
+                        RenderStats& stats, AfterTile&& after_tile) {
+  SampleCounts total;
+  pass.uniform_target = plan.first_pass;
+  NextPass next;
+  for (stats.sampling_passes = 1;; ++stats.sampling_passes) {
+    const auto pass_start = Clock::now();
+    const SampleCounts n = run_pass(pass, threads, after_tile);
+    total += n;
+    next = plan_next_pass(*pass.film, plan, seconds_since(t0), seconds_since(pass_start),
+                          n.camera_samples, stats.stop_reason);
+    if (!next.any) break;
+    pass.targets = &next.targets;
+  }
+  return total;
+}
+
+// The image's channels: the layout's, plus variance and spp when adaptive.
+std::vector<Aov> requested_aovs(const Scene& scene, const RenderOptions& options,
+                                const SamplingPlan& plan) {
+  std::vector<Aov> aovs = options.aovs ? *options.aovs : scene.render.aovs;
+  if (plan.noise_target)
+    for (Aov a : {Aov::Variance, Aov::Spp})
+      if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
+  return aovs;
+}
+
+void check_pixel_samples(const RenderOptions& options, const SamplingPlan& plan, size_t pixels) {
+  if (!options.pixel_samples) return;
+  if (options.pixel_samples->size() != pixels)
+    throw std::invalid_argument("render: pixel_samples has " +
+                                std::to_string(options.pixel_samples->size()) + " counts for " +
+                                std::to_string(pixels) + " pixels");
+  for (int64_t n : *options.pixel_samples)
+    if (n < 0 || n > plan.cap)
+      throw std::invalid_argument("render: a pixel sample count " + std::to_string(n) +
+                                  " is outside the range of " + std::to_string(plan.cap));
+}
+
+void set_sampling_metadata(std::map<std::string, std::string>& meta, const SamplingPlan& plan,
+                           const RenderStats& stats, const FilmSums& film) {
+  namespace key = metadata_key;
+  if (plan.noise_target) meta[key::kNoiseTarget] = std::to_string(*plan.noise_target);
+  if (plan.time_limit) meta[key::kTimeLimit] = std::to_string(*plan.time_limit);
+  if (!plan.multipass()) return;
+  meta[key::kStopReason] = stop_reason_name(stats.stop_reason);
+  meta[key::kSamplingPasses] = std::to_string(stats.sampling_passes);
+  set_noise_metadata(meta, film);
 }
 
 }  // namespace
 
+const char* stop_reason_name(StopReason r) {
+  switch (r) {
+    case StopReason::Spp:
+      return "spp";
+    case StopReason::NoiseTarget:
+      return "noise_target";
+    case StopReason::MaxSpp:
+      return "max_spp";
+    case StopReason::TimeLimit:
+      return "time_limit";
+  }
+  return "spp";
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const SampleRange range = sample_range(scene, options);
-  const std::vector<Aov>& aovs = options.aovs ? *options.aovs : scene.render.aovs;
-  const ChannelLayout layout = layout_for(scene, aovs, options.layers);
+  const auto t0 = Clock::now();
+  const SamplingPlan plan = plan_sampling(scene.render, options);
+  const ChannelLayout layout =
+      layout_for(scene, requested_aovs(scene, options, plan), options.layers);
   const PathTracerOptions pt = path_tracer_options(scene, options, layout);
+  const bool variance = plan.noise_target || find_derived_channels(layout.names).variance >= 0;
 
   RenderResult out;
   LayeredImage& img = out.image;
   img.width = scene.film.width;
   img.height = scene.film.height;
   img.channels = layout.names;
-  img.pixels.assign(size_t(img.width) * size_t(img.height) * layout.names.size(), 0.f);
-  if (options.keep_sums) out.sums.assign(img.pixels.size(), 0);
+  const size_t pixels = size_t(img.width) * size_t(img.height);
+  check_pixel_samples(options, plan, pixels);
 
-  const TileContext context{scene,
-                            layout,
-                            pt,
-                            range,
-                            (img.width + kTileSize - 1) / kTileSize,
-                            img,
-                            options.keep_sums ? &out.sums : nullptr};
-  const TileCounts counts = render_tiles(context, options);
+  const PixelSamplerContext pixel{scene, layout, plan.seed, plan.begin, img.width};
+  Pass pass{pixel,
+            pt,
+            img.height,
+            (img.width + kTileSize - 1) / kTileSize,
+            (img.height + kTileSize - 1) / kTileSize,
+            variance};
+  pass.targets = options.pixel_samples;
+  pass.uniform_target = plan.cap;
+  // Progress in camera samples, against the most the range allows.
+  const uint64_t most = uint64_t(pixels) * uint64_t(plan.cap);
+  std::atomic<uint64_t> done{0};
+  auto after_tile = [&](const SampleCounts& n) {
+    const uint64_t d = done += n.camera_samples;
+    if (options.on_progress) options.on_progress(size_t(std::min(d, most)), size_t(most));
+  };
 
-  out.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.stats.camera_samples = uint64_t(img.width) * uint64_t(img.height) * uint64_t(range.count);
+  SampleCounts counts;
+  if (!options.keep_sums && !plan.multipass()) {
+    img.pixels.assign(pixels * layout.names.size(), 0.f);
+    pass.image = &img;
+    counts = run_pass(pass, options.threads, after_tile);
+  } else {
+    out.film = FilmSums(img.width, img.height, layout.names, variance);
+    pass.film = &out.film;
+    counts = plan.multipass() && !options.pixel_samples
+                 ? run_passes(pass, plan, options.threads, t0, out.stats, after_tile)
+                 : run_pass(pass, options.threads, after_tile);
+    img.pixels = resolve_image(out.film).pixels;
+  }
+  if (options.on_progress) options.on_progress(size_t(most), size_t(most));
+
+  out.stats.seconds = seconds_since(t0);
+  out.stats.camera_samples = counts.camera_samples;
   out.stats.rays = counts.rays;
   out.stats.nonfinite_samples = counts.nonfinite;
   set_range_metadata(img.metadata, {.scene_hash = scene.content_hash,
                                     .renderer_version = VESPER_VERSION,
-                                    .spp = range.count,
-                                    .sample_begin = range.begin,
-                                    .sample_end = range.end,
-                                    .seed = range.seed,
+                                    .spp = plan.cap,
+                                    .sample_begin = plan.begin,
+                                    .sample_end = plan.end,
+                                    .seed = plan.seed,
                                     .render_seconds = out.stats.seconds,
                                     .nonfinite_samples = out.stats.nonfinite_samples});
+  set_sampling_metadata(img.metadata, plan, out.stats, out.film);
+  if (!options.keep_sums) out.film = FilmSums();
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "renderer/output/exact_sum.h"
+#include "renderer/output/film_sums.h"
 #include "renderer/output/layered_image.h"
 #include "renderer/scene/scene.h"
 
@@ -27,14 +28,25 @@ struct RenderOptions {
   std::optional<uint64_t> seed;          // overrides render.seed
   std::optional<std::vector<Aov>> aovs;  // overrides render.aovs
   // Renders sample indices [sample_begin, sample_end) of the pixel estimate;
-  // sample_end defaults to spp. At most kMaxExactSamples samples per range
-  // (std::invalid_argument otherwise). Pixels are exact_mean() of fixed-point
-  // sums (output/exact_sum.h), so disjoint ranges merge bitwise through
-  // their sums (output/partial_io.h).
+  // sample_end defaults to spp (max_spp with a noise target). At most
+  // kMaxExactSamples samples per range (std::invalid_argument otherwise).
+  // Pixels are exact_mean() of fixed-point sums (output/exact_sum.h), so
+  // disjoint ranges merge bitwise through their sums (output/partial_io.h).
+  // An adaptive render takes a prefix [sample_begin, sample_begin + n) of the
+  // range in each pixel.
   int sample_begin = 0;
   std::optional<int> sample_end;
-  // Also return the exact per-pixel sample sums (RenderResult::sums), for a
-  // partial render. Costs 16 bytes per pixel and channel; off by default.
+  // Override render.noise_target, min_spp, max_spp, time_limit (scene.h).
+  std::optional<double> noise_target;
+  std::optional<int> min_spp, max_spp;
+  std::optional<double> time_limit;
+  // Take exactly this many samples in each pixel (width * height counts, at
+  // most the range) instead of deciding: variant layers follow the beauty's
+  // adaptive counts. Not owned.
+  const std::vector<int64_t>* pixel_samples = nullptr;
+  // Also return the exact film state (RenderResult::film), for a partial
+  // render. Costs 16 bytes per pixel and channel, 16 per pixel for the sample
+  // counts and 192 per pixel for the variance's stream sums; off by default.
   bool keep_sums = false;
   bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
   std::vector<LayerSelection> layers;  // path-selection layers, same pass as the beauty
@@ -42,8 +54,14 @@ struct RenderOptions {
   std::function<void(size_t tiles_done, size_t tiles_total)> on_progress;
 };
 
+// Why sampling stopped.
+enum class StopReason { Spp, NoiseTarget, MaxSpp, TimeLimit };
+const char* stop_reason_name(StopReason r);
+
 struct RenderStats {
   double seconds = 0;
+  int sampling_passes = 1;
+  StopReason stop_reason = StopReason::Spp;
   uint64_t camera_samples = 0;
   uint64_t rays = 0;               // intersection + occlusion queries
   uint64_t nonfinite_samples = 0;  // NaN/Inf path values caught and dropped
@@ -52,12 +70,19 @@ struct RenderStats {
 struct RenderResult {
   LayeredImage image;
   RenderStats stats;
-  // With RenderOptions::keep_sums: the fixed-point sample sums, laid out like
-  // image.pixels (pixel-major, image.channels order); image.pixels[i] ==
-  // exact_mean(sums[i], sample count). Empty otherwise.
-  std::vector<ExactSum> sums;
+  // With RenderOptions::keep_sums: the exact film state (sums laid out like
+  // image.pixels; resolve_image(film) == image.pixels). Empty otherwise.
+  FilmSums film;
 };
 
 RenderResult render(const Scene& scene, const RenderOptions& options = {});
+
+// Samples per pixel of the whole frame: the spp, or max_spp (default: the
+// spp) with a noise target. `options` override the scene's render settings.
+int frame_spp(const RenderDesc& render, const RenderOptions& options);
+
+// Throws std::invalid_argument naming the setting (render.min_spp /
+// --min-spp, ...) when the sampling settings do not fit together.
+void check_sampling_options(const RenderDesc& render, const RenderOptions& options);
 
 }  // namespace vesper

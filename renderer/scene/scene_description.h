@@ -50,7 +50,9 @@ enum class Aov {
   SpecularDirect,
   SpecularIndirect,
   VolumeDirect,
-  VolumeIndirect
+  VolumeIndirect,
+  Variance,  // variance.R/G/B: the variance of the beauty's pixel mean
+  Spp        // spp: samples taken in the pixel
 };
 
 struct RenderDesc {
@@ -58,6 +60,12 @@ struct RenderDesc {
   int max_depth = 8;  // scattering events after the camera vertex; 1 = direct light only
   uint64_t seed = 0;
   std::vector<Aov> aovs;  // requested AOVs (render.aovs), in request order, no duplicates
+  // Adaptive sampling and budgets (docs/scene-format.md, "render"): with a
+  // noise target a pixel stops sampling once its estimated relative error of
+  // the mean is below it; spp is then the default max_spp.
+  std::optional<double> noise_target;
+  std::optional<int> min_spp, max_spp;
+  std::optional<double> time_limit;  // seconds of wall clock, checked after each pass
 };
 
 struct DiffuseMaterialDesc {

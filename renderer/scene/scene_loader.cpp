@@ -73,9 +73,23 @@ FilmDesc parse_film(JsonReader node) {
   return film;
 }
 
+// render.noise_target / min_spp / max_spp / time_limit.
+void parse_sampling_budget(JsonReader& node, RenderDesc& render) {
+  if (node.optional_child("noise_target"))
+    render.noise_target = node.number("noise_target", Range::positive());
+  if (node.optional_child("min_spp")) render.min_spp = int(node.integer("min_spp", 1, INT_MAX));
+  if (node.optional_child("max_spp")) render.max_spp = int(node.integer("max_spp", 1, INT_MAX));
+  if (render.min_spp && render.max_spp && *render.min_spp > *render.max_spp)
+    node.fail_key("min_spp", "min_spp " + std::to_string(*render.min_spp) +
+                                 " is greater than max_spp " + std::to_string(*render.max_spp));
+  if (node.optional_child("time_limit"))
+    render.time_limit = node.number("time_limit", Range::positive());
+}
+
 RenderDesc parse_render(JsonReader node) {
   node.expect_object();
-  node.allow_keys({"spp", "max_depth", "seed", "aovs"});
+  node.allow_keys(
+      {"spp", "max_depth", "seed", "aovs", "noise_target", "min_spp", "max_spp", "time_limit"});
   RenderDesc render;
   render.spp = int(node.integer("spp", 1, INT_MAX));
   render.max_depth = int(node.integer("max_depth", 8, 1, INT_MAX));
@@ -94,6 +108,7 @@ RenderDesc parse_render(JsonReader node) {
       render.aovs.push_back(aov);
     }
   }
+  parse_sampling_budget(node, render);
   return render;
 }
 

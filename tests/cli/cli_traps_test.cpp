@@ -78,6 +78,26 @@ TEST_F(CliTraps, ZeroSamplesAndNegativeSeedsNameTheBound) {
             0);
 }
 
+TEST_F(CliTraps, BadSamplingBudgetsNameTheFlagAndWriteNothing) {
+  for (const char* flag : {"--noise-target 0", "--noise-target -0.1", "--time-limit 0",
+                           "--min-spp 0", "--max-spp 0"}) {
+    const RunResult r = run(render("-o " + out("x.exr") + " " + flag));
+    EXPECT_EQ(r.exit_code, 2) << flag;
+    EXPECT_NE(r.err.find(std::string(flag).substr(0, std::string(flag).find(' '))),
+              std::string::npos)
+        << flag << ": " << r.err;
+  }
+  const RunResult crossed =
+      run(render("-o " + out("x.exr") + " --noise-target 0.1 --min-spp 64 --max-spp 16"));
+  EXPECT_EQ(crossed.exit_code, 2);
+  EXPECT_NE(crossed.err.find("--min-spp"), std::string::npos) << crossed.err;
+  EXPECT_NE(crossed.err.find("cornell"), std::string::npos) << "names the scene: " << crossed.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+  // A good budget renders and records what it reached.
+  ASSERT_EQ(run(render("-o " + out("a.exr") + " --noise-target 0.5 --max-spp 8 -q")).exit_code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "a.exr"));
+}
+
 TEST_F(CliTraps, UnknownFlagsAndCommandsSuggestTheNearestName) {
   const RunResult spx = run(render("-o " + out("x.exr") + " --spx 4"));
   EXPECT_EQ(spx.exit_code, 2);

@@ -46,12 +46,12 @@ TEST(Determinism, SampleRangesMergeBitwiseToTheFullRender) {
   const RenderResult b = render(scene, second);
   EXPECT_EQ(a.image.metadata.at("vesper:spp"), "3");
   EXPECT_EQ(b.image.metadata.at("vesper:spp"), "5");
-  ASSERT_EQ(a.sums.size(), f.image.pixels.size());
-  ASSERT_EQ(b.sums.size(), f.image.pixels.size());
+  ASSERT_EQ(a.film.sums.size(), f.image.pixels.size());
+  ASSERT_EQ(b.film.sums.size(), f.image.pixels.size());
   std::vector<float> merged(f.image.pixels.size());
   for (size_t i = 0; i < merged.size(); ++i) {
-    ASSERT_TRUE(a.sums[i] + b.sums[i] == f.sums[i]) << i;
-    merged[i] = exact_mean(a.sums[i] + b.sums[i], 8);
+    ASSERT_TRUE(a.film.sums[i] + b.film.sums[i] == f.film.sums[i]) << i;
+    merged[i] = exact_mean(a.film.sums[i] + b.film.sums[i], 8);
   }
   EXPECT_EQ(0, std::memcmp(merged.data(), f.image.pixels.data(), merged.size() * sizeof(float)));
   // And a range is not the full render (the test can fail).
@@ -63,10 +63,11 @@ TEST(Determinism, KeepingTheSumsDoesNotChangeTheImage) {
   RenderOptions with;
   with.keep_sums = true;
   const RenderResult a = render(scene), b = render(scene, with);
-  EXPECT_TRUE(a.sums.empty());
-  EXPECT_EQ(b.sums.size(), b.image.pixels.size());
+  EXPECT_TRUE(a.film.sums.empty());
+  EXPECT_EQ(b.film.sums.size(), b.image.pixels.size());
   EXPECT_EQ(a.image.pixels, b.image.pixels);
-  for (size_t i = 0; i < b.sums.size(); ++i) ASSERT_EQ(exact_mean(b.sums[i], 4), b.image.pixels[i]);
+  for (size_t i = 0; i < b.film.sums.size(); ++i)
+    ASSERT_EQ(exact_mean(b.film.sums[i], 4), b.image.pixels[i]);
 }
 
 TEST(Determinism, RefusesRangesLongerThanTheExactSumsHold) {

@@ -77,14 +77,14 @@ TEST(ExactSum, SumsDoNotDependOnTheOrder) {
 // ---------------------------------------------------------------- frames
 
 // The night room (fog, light groups, path layers, the rays_dense variant) at
-// 32x24 with AOVs, 13 spp.
+// 32x24 with AOVs (the variance and spp too), 13 spp.
 SceneDescription small_night_room() {
   SceneDescription d = load_scene(fs::path(VESPER_SOURCE_DIR) / "scenes/night-room/scene.json");
   d.film.width = 32;
   d.film.height = 24;
   d.render.spp = 13;
-  d.render.aovs = {Aov::Albedo,        Aov::Normal,         Aov::Depth,
-                   Aov::DiffuseDirect, Aov::VolumeIndirect, Aov::Emission};
+  d.render.aovs = {Aov::Albedo,         Aov::Normal,   Aov::Depth,    Aov::DiffuseDirect,
+                   Aov::VolumeIndirect, Aov::Emission, Aov::Variance, Aov::Spp};
   return d;
 }
 
@@ -96,7 +96,7 @@ Partial render_partial(const SceneDescription& d, int begin, int end, const std:
   o.keep_sums = true;
   o.seed = seed;
   FrameResult f = render_frame(d, o);
-  return make_partial(f.image, std::move(f.sums), d.render.spp, label);
+  return make_partial(f.image, std::move(f.film), d.render.spp, label);
 }
 
 void expect_same_metadata_but_time(const LayeredImage& a, const LayeredImage& b) {
@@ -120,9 +120,10 @@ TEST_F(PartialFiles, FourUnevenRangesMergeBitwiseToTheSingleRender) {
   const FrameResult full = render_frame(d, full_options);
   ASSERT_EQ(full.passes, 2);  // beauty + the rays_dense variant
   for (const char* ch : {"R", "A", "albedo.R", "normal.X", "depth.Z", "diffuse_direct.G", "fog.R",
-                         "fog.A", "candles.B", "lightrays.R", "surfaces.R", "rays_dense.R"})
+                         "fog.A", "candles.B", "lightrays.R", "surfaces.R", "rays_dense.R",
+                         "variance.R", "variance.B", "spp"})
     ASSERT_GE(full.image.channel_index(ch), 0) << ch;
-  ASSERT_EQ(full.sums.size(), full.image.pixels.size());
+  ASSERT_EQ(full.film.sums.size(), full.image.pixels.size());
   // Asking for the sums does not change the image.
   EXPECT_EQ(render_frame(d).image.pixels, full.image.pixels);
 
@@ -293,7 +294,7 @@ TEST_F(PartialFiles, DamagedFilesAreRefusedNamingTheFileAndTheProblem) {
   expect_error([&] { read_partial(ty); }, {ty.string(), "/height: expected an integer"});
   const fs::path j = damaged("json.vpartial", replaced("{\"channels\"", "{channels"));
   expect_error([&] { read_partial(j); }, {j.string(), "JSON"});
-  const fs::path fv = damaged("format.vpartial", replaced("vesper-partial/1", "vesper-partial/9"));
+  const fs::path fv = damaged("format.vpartial", replaced("vesper-partial/2", "vesper-partial/9"));
   expect_error([&] { read_partial(fv); }, {fv.string(), "unsupported format"});
   std::string flipped = bytes;
   flipped[header_end + 20] = char(flipped[header_end + 20] ^ 0x40);

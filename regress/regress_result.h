@@ -1,0 +1,63 @@
+#pragma once
+// What a regression run found: per scene and layer a verdict, its reasons,
+// the worst regions and the figures behind them. Shared by the comparison,
+// report.json, the HTML report and the history database.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vesper::regress {
+
+enum class Verdict { Pass, Regressed, Error };
+const char* verdict_name(Verdict v);  // "pass", "regressed", "error"
+
+// A tile whose difference Monte Carlo noise cannot explain.
+struct Region {
+  int x = 0, y = 0, width = 0, height = 0;  // pixels
+  double z = 0;                             // signed Z of (new - golden) luminance mean
+  double p_value = 0;                       // two-sided, before correction
+  double golden_mean = 0, new_mean = 0;     // mean luminance of the tile
+  double relative_change = 0;               // (new - golden) / max(|golden|, 1e-3)
+};
+
+struct LayerResult {
+  std::string layer;  // "beauty" for R,G,B; else the EXR layer name ("fog", "albedo", ...)
+  Verdict verdict = Verdict::Pass;
+  std::vector<std::string> reasons;  // one line each, e.g. "12 tiles brighter (max +4.1 %)"
+  std::vector<Region> worst;         // the most significant regions, most significant first
+  int tiles = 0, significant_tiles = 0;
+  double max_abs_z = 0;
+  // The smallest relative change of a tile's mean the test would have
+  // flagged at this noise (median over tiles): how strong a "pass" was.
+  double min_detectable_change = 0;
+  double histogram_distance = 0;  // Wasserstein-1 of the luminosity histograms (log2 stops)
+  uint64_t golden_nonfinite = 0, new_nonfinite = 0;  // NaN/Inf pixels in the layer's channels
+  bool has_variance = false;                          // false: compared without noise model
+  // Per-tile signed Z (row-major, tiles_x * tiles_y; 0 where untested), for
+  // the significance map; `tile_size` pixels square (edge tiles smaller).
+  int tile_size = 0, tiles_x = 0, tiles_y = 0;
+  std::vector<float> tile_z;
+};
+
+struct SceneResult {
+  std::string name;
+  Verdict verdict = Verdict::Pass;
+  std::vector<std::string> reasons;  // scene-level: errors, timing, channels added/missing
+  std::vector<LayerResult> layers;
+  std::vector<std::string> channels_added, channels_missing;
+  double golden_seconds = 0, new_seconds = 0;  // render time (median of repeats when repeated)
+  std::vector<double> new_seconds_repeats;
+  bool reused = false;  // the farm reused an identical task: nothing was rendered
+  std::string golden_image, new_image;  // paths of the EXRs compared
+};
+
+struct RunResult {
+  std::string suite;  // path of the suite file
+  std::string started_at;  // ISO 8601 UTC
+  std::string renderer_version;
+  Verdict verdict = Verdict::Pass;  // the worst scene verdict
+  std::vector<SceneResult> scenes;
+};
+
+}  // namespace vesper::regress

@@ -1,0 +1,48 @@
+#pragma once
+// The regression suite file, `vesper-suite/1` (docs/regression.md):
+// {"format": "vesper-suite/1", "scenes": [{"name": "cornell", "scene":
+// "cornell/scene.json", "spp": 64, "frames": "1", "layers": ["fog"],
+// "thresholds": {...}}]}. Paths are relative to the suite file.
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vesper::regress {
+
+// When a difference is a regression. Defaults fit the project's own suite;
+// a scene may override any of them ("thresholds" object, same keys).
+struct Thresholds {
+  double alpha = 1e-4;             // family-wise false-alarm rate per layer (Holm over its tiles)
+  int tile_size = 16;              // pixels
+  double min_relative_change = 0;  // ignore significant tile changes smaller than this
+  double max_slowdown = 1.3;       // new render time / golden's, judged on repeated timings
+  double max_histogram_distance = 0.05;  // Wasserstein-1 of the luminosity histograms, stops
+};
+
+struct SuiteScene {
+  std::string name;                    // unique in the suite; [A-Za-z0-9_.-]+
+  std::filesystem::path scene;         // absolute (resolved against the suite's folder)
+  std::optional<int> spp;              // exactly one of spp, noise_target
+  std::optional<double> noise_target;
+  std::string frames = "1";            // frame list as `vesper up --frames` takes it
+  std::optional<std::vector<std::string>> layers;  // default: every layer in the EXR
+  Thresholds thresholds;
+};
+
+struct Suite {
+  std::filesystem::path path;  // the suite file
+  std::vector<SuiteScene> scenes;
+};
+
+struct SuiteError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Reads and validates everything (unknown keys, types, ranges, duplicate
+// names, scene files that do not exist); a SuiteError names the file and the
+// JSON path ("suite.json: /scenes/2/spp: expected an integer in [1, ...]").
+Suite load_suite(const std::filesystem::path& path);
+
+}  // namespace vesper::regress
