@@ -109,8 +109,8 @@ int run_render(const RenderCommandOptions& o) {
     spdlog::info("{}: {}x{}, {}{} spp, {} shapes, {} lights, {} media, {} layers", o.scene,
                  desc.film.width, desc.film.height,
                  ro.noise_target || desc.render.noise_target ? "up to " : "",
-                 range->second - range->first,
-                 desc.shapes.size(), desc.lights.size(), desc.media.size(), desc.layers.size());
+                 range->second - range->first, desc.shapes.size(), desc.lights.size(),
+                 desc.media.size(), desc.layers.size());
   Progress progress("render");
   if (!o.quiet) ro.on_progress = [&](size_t d, size_t t) { progress.update(d, t); };
   FrameResult result = render_frame(desc, ro);

@@ -130,7 +130,7 @@ JobSpec read_job(JsonReader& o) {
   if (spec.name.size() > 256) o.fail_key(f::kName, "name longer than 256 characters");
   spec.scene = sha256_at(o, f::kScene, "an uploaded scene blob");
   spec.frames = read_frames(required(o, f::kFrames));
-  spec.spp = int(o.integer(f::kSpp, spec.spp, 1, 1 << 20));
+  spec.spp = int(o.integer(f::kSpp, spec.spp, 1, kMaxFrameSpp));
   spec.samples_per_task = int(o.integer(f::kSamplesPerTask, 0, 0, 1 << 20));
   spec.priority = int(o.integer(f::kPriority, spec.priority, -1000000, 1000000));
   spec.max_attempts = int(o.integer(f::kMaxAttempts, spec.max_attempts, 1, 100));
@@ -155,8 +155,8 @@ BudgetRequest read_budget_request(JsonReader& o) {
   if (const auto v = o.optional_child(f::kNoiseTarget))
     r.budget.noise_target = v->as_number(Range::positive());
   if (const auto v = o.optional_child(f::kMinSpp))
-    r.budget.min_spp = int(v->as_integer(1, 1 << 20));
-  if (const auto v = o.optional_child(f::kMaxSpp)) r.max_spp = int(v->as_integer(1, 1 << 20));
+    r.budget.min_spp = int(v->as_integer(1, kMaxFrameSpp));
+  if (const auto v = o.optional_child(f::kMaxSpp)) r.max_spp = int(v->as_integer(1, kMaxFrameSpp));
   if (const auto v = o.optional_child(f::kTimeLimit))
     r.budget.time_limit = v->as_number(Range::positive());
   return r;

@@ -31,6 +31,7 @@ class JsonReader;
 // max_spp; min_spp and max_spp need a noise target, min_spp <= the frame's
 // spp. Errors name the key ("/min_spp").
 constexpr int64_t kMaxTasksPerJob = 100000;
+constexpr int kMaxFrameSpp = 1 << 20;  // samples a pixel of a frame may take
 constexpr int64_t kMaxAssetsPerJob = 10000;
 JobSpec read_job_request(const std::string& body);
 // The render budget keys of `object` (a submit body, a job file), each

@@ -58,8 +58,8 @@ TEST(RenderCommand, PassesTheTasksBudget) {
   split.time_limit = 7.5;
   EXPECT_EQ(command_line(render_command(split, config(0), "s.json", "out")),
             "/opt/vesper/bin/vesper render s.json -o out --spp 256 --sample-begin 64 "
-            "--sample-end 128 --frame 2 --partial --noise-target 0.02 --min-spp 16 "
-            "--time-limit 7.5");
+            "--sample-end 128 --frame 2 --partial --noise-target 0.02 --max-spp 256 "
+            "--min-spp 16 --time-limit 7.5");
   protocol::LeaseResponse whole = lease(1, 64, 0, 64);
   whole.noise_target = 0.1 / std::sqrt(0.36);  // not a short decimal
   const auto argv = render_command(whole, config(0), "s.json", "out.exr");
@@ -69,6 +69,8 @@ TEST(RenderCommand, PassesTheTasksBudget) {
   EXPECT_EQ(std::count(argv.begin(), argv.end(), "--min-spp"), 0);
   EXPECT_EQ(std::count(argv.begin(), argv.end(), "--time-limit"), 0);
   EXPECT_EQ(render_output_extension(whole), ".exr");
+  EXPECT_EQ(describe_budget(split), ", noise target 0.02 (min spp 16), time limit 7.5 s");
+  EXPECT_EQ(describe_budget(lease(1, 4, 0, 4)), "");
 }
 
 TEST(RenderCommand, LeavesTheSeedToTheSceneAndTheProgressLinesOn) {
