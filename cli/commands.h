@@ -24,6 +24,7 @@ struct RenderCommandOptions {
   int sample_begin = 0;
   std::optional<int> sample_end;
   SamplingFlags sampling;
+  bool layer_variance = false;  // --layer-variance: <layer>.variance.R/G/B for every RGB layer
   // Frame number: decorrelates the frame's noise from other frames (the seed
   // becomes frame_seed(seed, frame)) and is stamped as vesper:frame.
   std::optional<int> frame;

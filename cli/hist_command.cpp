@@ -10,15 +10,14 @@
 // display-referred inputs are then decoded with the sRGB inverse transfer.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "cli/commands.h"
+#include "common/atomic_file.h"
 #include "compositor/grade.h"
 #include "compositor/histogram.h"
 
@@ -86,22 +85,10 @@ std::string comparison(const char* what, const Histogram& h, const Histogram& re
 }
 
 void write_text_atomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f << text;
-    f.flush();
-    if (!f) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw CompError(path.string() + ": cannot write");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw CompError(path.string() + ": cannot move the finished file into place: " + ec.message());
+  try {
+    write_file_atomically(path, text);
+  } catch (const FileWriteError& e) {
+    throw CompError(e.what());
   }
 }
 

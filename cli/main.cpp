@@ -111,6 +111,9 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
       "diffuse_indirect, specular_direct, specular_indirect, volume_direct, volume_indirect, "
       "variance (of the pixel mean), spp (samples taken)");
   add_sampling_flags(r, o->sampling);
+  r->add_flag("--layer-variance", o->layer_variance,
+              "Also write <layer>.variance.R/G/B for every RGB AOV and layer (costs 192 bytes "
+              "per pixel and layer while rendering)");
   r->add_option("--sample-begin", o->sample_begin,
                 "First sample index of this range (for split renders)")
       ->check(at_least(0));

@@ -61,6 +61,15 @@ std::optional<std::pair<int, int>> sample_range(const RenderCommandOptions& o, i
   return std::pair{begin, end};
 }
 
+// How adaptive or time-limited sampling ended (nothing for plain renders).
+void log_sampling(const std::map<std::string, std::string>& meta) {
+  namespace key = metadata_key;
+  if (!meta.count(key::kStopReason)) return;
+  spdlog::info("sampling stopped by {} after {} passes: {} spp on average, noise {}",
+               meta.at(key::kStopReason), meta.at(key::kSamplingPasses), meta.at(key::kSppMean),
+               meta.count(key::kNoiseReached) ? meta.at(key::kNoiseReached) : "not measured");
+}
+
 }  // namespace
 
 int run_render(const RenderCommandOptions& o) {
@@ -95,6 +104,7 @@ int run_render(const RenderCommandOptions& o) {
   ro.time_limit = o.sampling.time_limit;
   ro.min_spp = o.sampling.min_spp;
   ro.max_spp = o.sampling.max_spp;
+  ro.layer_variance = o.layer_variance;
   try {
     check_sampling_options(desc.render, ro);
   } catch (const std::invalid_argument& e) {
@@ -133,14 +143,7 @@ int run_render(const RenderCommandOptions& o) {
   if (!o.quiet)
     spdlog::info("wrote {} ({:.2f} s, {:.1f} Mrays/s)", out_path.string(), result.stats.seconds,
                  mrays);
-  if (!o.quiet && result.image.metadata.count(metadata_key::kStopReason))
-    spdlog::info("sampling stopped by {} after {} passes: {} spp on average, noise {}",
-                 result.image.metadata.at(metadata_key::kStopReason),
-                 result.image.metadata.at(metadata_key::kSamplingPasses),
-                 result.image.metadata.at(metadata_key::kSppMean),
-                 result.image.metadata.count(metadata_key::kNoiseReached)
-                     ? result.image.metadata.at(metadata_key::kNoiseReached)
-                     : "not measured");
+  if (!o.quiet) log_sampling(result.image.metadata);
   std::printf("%s\n", out_path.string().c_str());
   return 0;
 }

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "compositor/histogram.h"
+#include "compositor/histogram_scale.h"
 
 namespace vesper {
 
@@ -43,13 +44,6 @@ struct Canvas {
   }
 };
 
-std::vector<double> fractions(const Histogram& h) {
-  std::vector<double> f(h.bins.size(), 0.0);
-  if (h.count == 0) return f;
-  for (size_t i = 0; i < f.size(); ++i) f[i] = double(h.bins[i]) / double(h.count);
-  return f;
-}
-
 // Height (pixels, fractional) of a fraction under the common scale.
 double bar_height(double f, double top) {
   return top > 0 ? std::min(1.0, f / top) * double(kY1 - kY0) : 0.0;
@@ -72,22 +66,6 @@ uint8_t key_grey(const Histogram& h, double t) {
 void marker(Canvas& c, int x, Rgb8 colour) {
   for (int row = 0; row < 7; ++row)
     c.rect(x + 1 - (6 - row), 4 + row, x + 1 + (6 - row) + 1, 5 + row, colour);
-}
-
-// Common scale from the interior bins (a black background or blown
-// highlights in an end bin would flatten the rest); 5% headroom.
-double common_scale(const std::vector<double>& f, const std::vector<double>& fr) {
-  const size_t nb = f.size();
-  double top = 0;
-  for (size_t i = 1; i + 1 < nb; ++i) {
-    top = std::max(top, f[i]);
-    if (!fr.empty()) top = std::max(top, fr[i]);
-  }
-  if (top == 0) {
-    for (double v : f) top = std::max(top, v);
-    for (double v : fr) top = std::max(top, v);
-  }
-  return top * 1.05;
 }
 
 // Gridlines at quarters of the range and of the scale.
@@ -193,6 +171,29 @@ void write_png(const Canvas& c, const std::filesystem::path& path) {
 
 }  // namespace
 
+std::vector<double> histogram_fractions(const Histogram& h) {
+  std::vector<double> f(h.bins.size(), 0.0);
+  if (h.count == 0) return f;
+  for (size_t i = 0; i < f.size(); ++i) f[i] = double(h.bins[i]) / double(h.count);
+  return f;
+}
+
+// Common scale from the interior bins (a black background or blown
+// highlights in an end bin would flatten the rest); 5% headroom.
+double histogram_plot_scale(const std::vector<double>& f, const std::vector<double>& fr) {
+  const size_t nb = f.size();
+  double top = 0;
+  for (size_t i = 1; i + 1 < nb; ++i) {
+    top = std::max(top, f[i]);
+    if (i < fr.size()) top = std::max(top, fr[i]);
+  }
+  if (top == 0) {
+    for (double v : f) top = std::max(top, v);
+    for (double v : fr) top = std::max(top, v);
+  }
+  return top * 1.05;
+}
+
 void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
                          const Histogram* reference) {
   if (h.bins.empty()) throw CompError(path.string() + ": cannot plot a histogram without bins");
@@ -201,9 +202,10 @@ void write_histogram_png(const Histogram& h, const std::filesystem::path& path,
   Canvas c;
   c.rect(0, 0, kW, kH, kBackground);
   c.rect(kX0, kY0, kX1, kY1, kPlotArea);
-  const std::vector<double> f = fractions(h);
-  const std::vector<double> fr = reference ? fractions(*reference) : std::vector<double>{};
-  const double top = common_scale(f, fr);
+  const std::vector<double> f = histogram_fractions(h);
+  const std::vector<double> fr =
+      reference ? histogram_fractions(*reference) : std::vector<double>{};
+  const double top = histogram_plot_scale(f, fr);
   draw_grid(c);
   // Median of the image: a line behind the histogram and a marker above the plot.
   if (h.count > 0) {

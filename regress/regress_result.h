@@ -38,6 +38,10 @@ struct LayerResult {
   // the significance map; `tile_size` pixels square (edge tiles smaller).
   int tile_size = 0, tiles_x = 0, tiles_y = 0;
   std::vector<float> tile_z;
+  // Per tile as tile_z: 1 where the difference counts (significant after the
+  // multiple-testing correction and at least min_relative_change), else 0.
+  // Empty: the report takes the `significant_tiles` tiles of largest |Z|.
+  std::vector<uint8_t> tile_significant;
 };
 
 struct SceneResult {

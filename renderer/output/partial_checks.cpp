@@ -1,5 +1,7 @@
 #include "renderer/output/partial_checks.h"
 
+#include <stdexcept>
+
 #include "renderer/output/film_sums.h"
 #include "renderer/sampling/sample_streams.h"
 
@@ -24,11 +26,15 @@ void check_sums_size(const Partial& p) {
   if (p.counts.size() != pixel_count(p) * size_t(kSampleStreams))
     fail(p.source, "holds " + std::to_string(p.counts.size()) + " sample counts, expected " +
                        std::to_string(pixel_count(p) * size_t(kSampleStreams)));
-  if (!p.stream_sums.empty() && p.stream_sums.size() != pixel_count(p) * size_t(kSampleStreams) * 3)
+  const size_t streams = pixel_count(p) * size_t(kSampleStreams) * p.streamed.size();
+  if (p.stream_sums.size() != streams)
     fail(p.source, "holds " + std::to_string(p.stream_sums.size()) + " stream sums, expected " +
-                       std::to_string(pixel_count(p) * size_t(kSampleStreams) * 3));
-  if (find_derived_channels(p.channels).variance >= 0 && p.stream_sums.empty())
-    fail(p.source, "has variance channels but no stream sums");
+                       std::to_string(streams));
+  try {
+    (void)find_derived_channels(p.channels, p.streamed);
+  } catch (const std::invalid_argument& e) {
+    fail(p.source, e.what());
+  }
 }
 
 }  // namespace vesper::partial_checks

@@ -43,9 +43,9 @@ bool is_range_key(const std::string& k) {
 }
 
 // Bytes of the uncompressed body: sums, then stream sums, then counts.
-size_t body_bytes(const Partial& p, bool variance) {
+size_t body_bytes(const Partial& p) {
   return pixel_count(p) *
-         (p.channels.size() * 16 + (variance ? kStreams * 3 * 16 : 0) + kStreams * 4);
+         (p.channels.size() * 16 + kStreams * p.streamed.size() * 16 + kStreams * 4);
 }
 
 void append_counts(std::vector<unsigned char>& bytes, const std::vector<uint32_t>& counts) {
@@ -58,6 +58,21 @@ std::vector<uint32_t> decode_counts(const unsigned char* bytes, size_t count) {
   for (size_t i = 0; i < count; ++i)
     for (int b = 3; b >= 0; --b) counts[i] = (counts[i] << 8) | bytes[i * 4 + size_t(b)];
   return counts;
+}
+
+// The header's stream_channels as channel indices.
+std::vector<int> streamed_indices(const Partial& p, const std::vector<std::string>& names) {
+  std::vector<int> out;
+  for (const std::string& n : names) {
+    const auto it = std::find(p.channels.begin(), p.channels.end(), n);
+    if (it == p.channels.end())
+      fail(p.source, "header: /stream_channels: '" + n + "' is not one of the channels");
+    const int c = int(it - p.channels.begin());
+    if (std::find(out.begin(), out.end(), c) != out.end())
+      fail(p.source, "header: /stream_channels: '" + n + "' is listed twice");
+    out.push_back(c);
+  }
+  return out;
 }
 
 // A version-1 partial's counts: every pixel took its whole range.
@@ -153,7 +168,7 @@ void parse_sample_range(JsonReader& h, Partial& p) {
 // The header line (docs/partial-format.md): everything but the sums. Throws
 // JsonError naming `label` and the JSON path of the offending key.
 Partial parse_header(const json& j, const std::string& label, SumsLayout& sums, bool& version1,
-                     bool& variance) {
+                     std::vector<std::string>& streamed) {
   JsonReader h(j, label, "");
   h.expect_object();
   // The format decides what the rest means, so it is checked first.
@@ -164,14 +179,14 @@ Partial parse_header(const json& j, const std::string& label, SumsLayout& sums, 
                 " and " + kFormatV1 + ")");
   h.allow_keys({"format", "width", "height", "channels", "sample_begin", "sample_end", "frame_spp",
                 "seed", "scene_hash", "renderer_version", "nonfinite_samples", "render_seconds",
-                "metadata", "sums", "streams", "variance"});
-  variance = false;
+                "metadata", "sums", "streams", "stream_channels"});
   if (!version1) {
     const JsonReader streams = h.child("streams");
     if (streams.as_integer(1, 1 << 16) != int64_t(kStreams))
       streams.fail("this build samples in " + std::to_string(kStreams) + " streams, not " +
                    streams.json().dump());
-    variance = h.boolean("variance", false);
+    const JsonReader names = h.array("stream_channels");
+    for (size_t i = 0; i < names.size(); ++i) streamed.push_back(names.element(i).as_string());
   }
   Partial p;
   p.width = int(h.integer("width", 1, kMaxDimension));
@@ -250,7 +265,9 @@ std::string header_line(const Partial& p, size_t raw_bytes, size_t compressed_by
   h["render_seconds"] = p.render_seconds;
   h["metadata"] = p.metadata;
   h["streams"] = kStreams;
-  h["variance"] = !p.stream_sums.empty();
+  std::vector<std::string> streamed;
+  for (int c : p.streamed) streamed.push_back(p.channels[size_t(c)]);
+  h["stream_channels"] = streamed;
   h["sums"] = {{"encoding", kEncoding},
                {"compression", "zlib"},
                {"bytes", raw_bytes},
@@ -266,7 +283,7 @@ FilmSums Partial::film() const {
   f.width = width;
   f.height = height;
   f.channels = channels;
-  f.has_variance = !stream_sums.empty();
+  f.streamed = streamed;
   f.sums = sums;
   f.stream_sums = stream_sums;
   f.counts = counts;
@@ -301,6 +318,7 @@ Partial make_partial(const LayeredImage& image, FilmSums film, int frame_spp, st
   if (film.channels != image.channels || film.width != image.width || film.height != image.height)
     fail(p.source, "the film's sums are not of this image (channels or size differ)");
   p.sums = std::move(film.sums);
+  p.streamed = std::move(film.streamed);
   p.stream_sums = std::move(film.stream_sums);
   p.counts = std::move(film.counts);
   check_sums_size(p);
@@ -351,24 +369,26 @@ Partial read_partial(const fs::path& path) {
   const std::string line = read_header_line(f, src);
   Partial p;
   SumsLayout layout;
-  bool version1 = false, variance = false;
+  bool version1 = false;
+  std::vector<std::string> streamed;
   try {
     const std::string label = src + " header";
-    p = parse_header(parse_json(line, label), label, layout, version1, variance);
+    p = parse_header(parse_json(line, label), label, layout, version1, streamed);
   } catch (const JsonError& e) {
     throw PartialError(e.what());
   }
   p.source = src;
+  p.streamed = streamed_indices(p, streamed);
   const size_t count = sum_count(p);
-  const size_t expected = version1 ? count * 16 : body_bytes(p, variance);
+  const size_t expected = version1 ? count * 16 : body_bytes(p);
   if (layout.bytes != expected)
     fail(src, "size mismatch: header says " + std::to_string(layout.bytes) +
                   " bytes of sums, but " + std::to_string(p.width) + "x" +
                   std::to_string(p.height) + " pixels x " + std::to_string(p.channels.size()) +
                   " channels" +
-                  (version1   ? ""
-                   : variance ? " with stream sums and counts"
-                              : " with counts") +
+                  (version1 ? ""
+                            : " with " + std::to_string(p.streamed.size()) +
+                                  " streamed channels and counts") +
                   " make " + std::to_string(expected));
   const std::vector<unsigned char> raw =
       decompress_sums(read_compressed_sums(f, src, layout.compressed_bytes), layout, src);
@@ -377,7 +397,7 @@ Partial read_partial(const fs::path& path) {
     p.counts = uniform_counts(p);
     return p;
   }
-  const size_t streams = variance ? pixel_count(p) * kStreams * 3 : 0;
+  const size_t streams = pixel_count(p) * kStreams * p.streamed.size();
   p.stream_sums = decode_sums(raw.data() + count * 16, streams);
   p.counts = decode_counts(raw.data() + (count + streams) * 16, pixel_count(p) * kStreams);
   return p;

@@ -34,9 +34,10 @@ struct Partial {
   std::map<std::string, std::string> metadata;
   // Fixed-point sums, (y * width + x) * channels.size() + c.
   std::vector<ExactSum> sums;
-  // Per pixel and sample stream (film_sums.h): the beauty's R, G, B sums
-  // (only when the frame has variance channels or sampled adaptively) and the
+  // The channels whose per-stream sums are kept (film_sums.h: for their
+  // variance), their sums per pixel and stream, and the per-pixel, per-stream
   // sample counts.
+  std::vector<int> streamed;
   std::vector<ExactSum> stream_sums;
   std::vector<uint32_t> counts;
 

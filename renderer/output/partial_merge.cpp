@@ -105,8 +105,9 @@ LayeredImage merge_partials(const std::vector<Partial>& parts) {
     if (const auto it = p.metadata.find(metadata_key::kStopReason); it != p.metadata.end())
       stop_reasons.insert(it->second);
     if (&p == &ref) continue;
-    if (p.stream_sums.empty() != ref.stream_sums.empty())
-      fail(p.source, "stream sums (variance) present in one partial but not in " + ref.source);
+    if (p.streamed != ref.streamed)
+      fail(p.source, "streamed channels (for the variance) differ from " + ref.source +
+                         "'s: not partials of one frame");
     total.add(p.film());
     nonfinite += p.nonfinite_samples;
     seconds += p.render_seconds;

@@ -109,8 +109,25 @@ void add_layer(ChannelLayout& l, const LayerSelection& layer, const std::vector<
 
 }  // namespace
 
+namespace {
+
+// The variance channels of the streamed RGB outputs, after every other channel.
+void add_layer_variance(ChannelLayout& l) {
+  std::vector<int> triples;
+  for (const BinOutput& o : l.bin_outputs) triples.push_back(o.channel);
+  if (l.albedo >= 0) triples.push_back(l.albedo);
+  std::sort(triples.begin(), triples.end());
+  for (int first : triples)
+    for (int c = 0; c < 3; ++c) {
+      l.streamed.push_back(first + c);
+      l.names.push_back(variance_channel_of(l.names[size_t(first + c)]));
+    }
+}
+
+}  // namespace
+
 ChannelLayout layout_for(const Scene& scene, const std::vector<Aov>& aovs,
-                         const std::vector<LayerSelection>& layers) {
+                         const std::vector<LayerSelection>& layers, bool layer_variance) {
   ChannelLayout l;
   std::vector<int> all_groups(scene.group_names.size());
   std::iota(all_groups.begin(), all_groups.end(), 0);
@@ -118,6 +135,8 @@ ChannelLayout layout_for(const Scene& scene, const std::vector<Aov>& aovs,
   const int groups = int(all_groups.size());
   for (const LayerSelection& layer : layers)
     add_layer(l, layer, groups_of(scene, layer, all_groups), groups);
+  if (std::find(aovs.begin(), aovs.end(), Aov::Variance) != aovs.end()) l.streamed = {0, 1, 2};
+  if (layer_variance) add_layer_variance(l);
   return l;
 }
 

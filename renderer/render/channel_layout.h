@@ -20,6 +20,8 @@ struct ChannelLayout {
   int albedo = -1, normal = -1, depth = -1;
   std::vector<BinOutput> bin_outputs;
   bool need_transmittance = false;
+  // Channels whose per-stream sums are kept for their variance (FilmSums::streamed).
+  std::vector<int> streamed;
   std::vector<std::string> names{"R", "G", "B", "A"};
 
   int add_rgb(const std::string& prefix) {
@@ -29,7 +31,9 @@ struct ChannelLayout {
   }
 };
 
+// With Aov::Variance the beauty is streamed; with `layer_variance` also every
+// RGB AOV and layer, each with its `<name>.variance.R/G/B` channels at the end.
 ChannelLayout layout_for(const Scene& scene, const std::vector<Aov>& aovs,
-                         const std::vector<LayerSelection>& layers);
+                         const std::vector<LayerSelection>& layers, bool layer_variance = false);
 
 }  // namespace vesper

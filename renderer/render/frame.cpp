@@ -37,11 +37,10 @@ bool layer_has_alpha(const LayerDesc& layer, const SceneDescription& scene) {
 
 // Appends the ns channels of src to the nd channels of dst (both
 // pixel-interleaved over `pixels` pixels).
-template <typename T>
-void append_interleaved(std::vector<T>& dst, size_t nd, const std::vector<T>& src, size_t ns,
-                        size_t pixels) {
+void append_interleaved(std::vector<float>& dst, size_t nd, const std::vector<float>& src,
+                        size_t ns, size_t pixels) {
   const size_t n = nd + ns;
-  std::vector<T> merged(pixels * n);
+  std::vector<float> merged(pixels * n);
   for (size_t p = 0; p < pixels; ++p) {
     std::copy_n(&dst[p * nd], nd, &merged[p * n]);
     std::copy_n(&src[p * ns], ns, &merged[p * n + nd]);
@@ -50,10 +49,9 @@ void append_interleaved(std::vector<T>& dst, size_t nd, const std::vector<T>& sr
 }
 
 // Keeps the channels `keep` of the n channels of src.
-template <typename T>
-std::vector<T> select_interleaved(const std::vector<T>& src, size_t n,
-                                  const std::vector<size_t>& keep, size_t pixels) {
-  std::vector<T> out(pixels * keep.size());
+std::vector<float> select_interleaved(const std::vector<float>& src, size_t n,
+                                      const std::vector<size_t>& keep, size_t pixels) {
+  std::vector<float> out(pixels * keep.size());
   for (size_t p = 0; p < pixels; ++p)
     for (size_t k = 0; k < keep.size(); ++k) out[p * keep.size() + k] = src[p * n + keep[k]];
   return out;
@@ -155,11 +153,8 @@ FrameResult render_frame(const SceneDescription& desc, const RenderOptions& opti
     const std::vector<size_t> keep = layer_channels(r.image, layer->name);
     append_interleaved(frame.image.pixels, nd, select_interleaved(r.image.pixels, ns, keep, pixels),
                        keep.size(), pixels);
-    if (options.keep_sums)
-      append_interleaved(frame.film.sums, nd, select_interleaved(r.film.sums, ns, keep, pixels),
-                         keep.size(), pixels);
+    if (options.keep_sums) frame.film.append_channels(r.film, keep);
     for (size_t k : keep) frame.image.channels.push_back(r.image.channels[k]);
-    if (options.keep_sums) frame.film.channels = frame.image.channels;
     frame.stats.seconds += r.stats.seconds;
     frame.stats.rays += r.stats.rays;
     frame.stats.camera_samples += r.stats.camera_samples;

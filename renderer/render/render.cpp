@@ -39,7 +39,6 @@ struct Pass {
   const PixelSamplerContext& pixel;
   const PathTracerOptions& pt;
   int height = 0, tiles_x = 0, tiles_y = 0;
-  bool variance = false;  // keep stream sums
   // Film mode: the sums persist across passes (adaptive, time limit, partials).
   FilmSums* film = nullptr;
   // Local mode (one pass, no sums kept): each pixel is resolved into image right away.
@@ -55,13 +54,13 @@ struct Pass {
 struct ScratchPixel {
   std::vector<ExactSum> sums, stream_sums;
   std::vector<uint32_t> counts;
-  explicit ScratchPixel(size_t channels)
-      : sums(channels), stream_sums(size_t(kSampleStreams) * 3), counts(kSampleStreams) {}
-  PixelSums clear(bool variance) {
+  ScratchPixel(size_t channels, size_t streamed)
+      : sums(channels), stream_sums(size_t(kSampleStreams) * streamed), counts(kSampleStreams) {}
+  PixelSums clear() {
     std::fill(sums.begin(), sums.end(), ExactSum(0));
     std::fill(stream_sums.begin(), stream_sums.end(), ExactSum(0));
     std::fill(counts.begin(), counts.end(), 0u);
-    return {sums.data(), variance ? stream_sums.data() : nullptr, counts.data()};
+    return {sums.data(), stream_sums.empty() ? nullptr : stream_sums.data(), counts.data()};
   }
 };
 
@@ -69,8 +68,8 @@ SampleCounts render_tile(const Pass& pass, size_t tile) {
   set_flush_to_zero();
   const PixelSamplerContext& c = pass.pixel;
   const size_t nc = c.layout.names.size();
-  const DerivedChannels derived = find_derived_channels(c.layout.names);
-  ScratchPixel scratch(nc);
+  const DerivedChannels derived = find_derived_channels(c.layout.names, c.layout.streamed);
+  ScratchPixel scratch(nc, c.layout.streamed.size());
   PathRecord record(int(c.scene.group_names.size()));
   PathTracerOptions pt = pass.pt;
   if (!c.layout.bin_outputs.empty()) pt.record = &record;
@@ -84,9 +83,9 @@ SampleCounts render_tile(const Pass& pass, size_t tile) {
         const PixelSums px = pass.film->pixel(p);
         counts += sample_pixel(c, x, y, sample_count(px.counts), target, pt, record, px);
       } else {
-        const PixelSums px = scratch.clear(pass.variance);
+        const PixelSums px = scratch.clear();
         counts += sample_pixel(c, x, y, 0, target, pt, record, px);
-        resolve_pixel({px.sums, px.stream_sums, px.counts}, nc, derived,
+        resolve_pixel({px.sums, px.stream_sums, px.counts, c.layout.streamed.size()}, nc, derived,
                       pass.image->pixels.data() + p * nc);
       }
     }
@@ -182,6 +181,8 @@ SampleCounts run_passes(Pass& pass, const SamplingPlan& plan, int threads, Clock
 std::vector<Aov> requested_aovs(const Scene& scene, const RenderOptions& options,
                                 const SamplingPlan& plan) {
   std::vector<Aov> aovs = options.aovs ? *options.aovs : scene.render.aovs;
+  if (options.layer_variance && std::find(aovs.begin(), aovs.end(), Aov::Variance) == aovs.end())
+    aovs.push_back(Aov::Variance);
   if (plan.noise_target)
     for (Aov a : {Aov::Variance, Aov::Spp})
       if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
@@ -230,10 +231,9 @@ const char* stop_reason_name(StopReason r) {
 RenderResult render(const Scene& scene, const RenderOptions& options) {
   const auto t0 = Clock::now();
   const SamplingPlan plan = plan_sampling(scene.render, options);
-  const ChannelLayout layout =
-      layout_for(scene, requested_aovs(scene, options, plan), options.layers);
+  const ChannelLayout layout = layout_for(scene, requested_aovs(scene, options, plan),
+                                          options.layers, options.layer_variance);
   const PathTracerOptions pt = path_tracer_options(scene, options, layout);
-  const bool variance = plan.noise_target || find_derived_channels(layout.names).variance >= 0;
 
   RenderResult out;
   LayeredImage& img = out.image;
@@ -244,12 +244,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   check_pixel_samples(options, plan, pixels);
 
   const PixelSamplerContext pixel{scene, layout, plan.seed, plan.begin, img.width};
-  Pass pass{pixel,
-            pt,
-            img.height,
-            (img.width + kTileSize - 1) / kTileSize,
-            (img.height + kTileSize - 1) / kTileSize,
-            variance};
+  Pass pass{pixel, pt, img.height, (img.width + kTileSize - 1) / kTileSize,
+            (img.height + kTileSize - 1) / kTileSize};
   pass.targets = options.pixel_samples;
   pass.uniform_target = plan.cap;
   // Progress in camera samples, against the most the range allows.
@@ -266,7 +262,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     pass.image = &img;
     counts = run_pass(pass, options.threads, after_tile);
   } else {
-    out.film = FilmSums(img.width, img.height, layout.names, variance);
+    out.film = FilmSums(img.width, img.height, layout.names, layout.streamed);
     pass.film = &out.film;
     counts = plan.multipass() && !options.pixel_samples
                  ? run_passes(pass, plan, options.threads, t0, out.stats, after_tile)

@@ -48,6 +48,10 @@ struct RenderOptions {
   // render. Costs 16 bytes per pixel and channel, 16 per pixel for the sample
   // counts and 192 per pixel for the variance's stream sums; off by default.
   bool keep_sums = false;
+  // Also write `<name>.variance.R/G/B` for every RGB AOV and layer (and the
+  // beauty's variance.R/G/B): 192 more bytes per pixel for each, while
+  // rendering. For the regression batch's per-layer noise model.
+  bool layer_variance = false;
   bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
   std::vector<LayerSelection> layers;  // path-selection layers, same pass as the beauty
   // Called from worker threads after each tile (must be thread-safe).

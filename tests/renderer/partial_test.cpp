@@ -94,6 +94,7 @@ Partial render_partial(const SceneDescription& d, int begin, int end, const std:
   o.sample_begin = begin;
   o.sample_end = end;
   o.keep_sums = true;
+  o.layer_variance = true;
   o.seed = seed;
   FrameResult f = render_frame(d, o);
   return make_partial(f.image, std::move(f.film), d.render.spp, label);
@@ -117,15 +118,19 @@ TEST_F(PartialFiles, FourUnevenRangesMergeBitwiseToTheSingleRender) {
   const SceneDescription d = small_night_room();
   RenderOptions full_options;
   full_options.keep_sums = true;
+  full_options.layer_variance = true;
   const FrameResult full = render_frame(d, full_options);
   ASSERT_EQ(full.passes, 2);  // beauty + the rays_dense variant
-  for (const char* ch : {"R", "A", "albedo.R", "normal.X", "depth.Z", "diffuse_direct.G", "fog.R",
-                         "fog.A", "candles.B", "lightrays.R", "surfaces.R", "rays_dense.R",
-                         "variance.R", "variance.B", "spp"})
+  for (const char* ch :
+       {"R", "A", "albedo.R", "normal.X", "depth.Z", "diffuse_direct.G", "fog.R", "fog.A",
+        "candles.B", "lightrays.R", "surfaces.R", "rays_dense.R", "variance.R", "variance.B", "spp",
+        "fog.variance.G", "rays_dense.variance.R", "albedo.variance.B"})
     ASSERT_GE(full.image.channel_index(ch), 0) << ch;
   ASSERT_EQ(full.film.sums.size(), full.image.pixels.size());
   // Asking for the sums does not change the image.
-  EXPECT_EQ(render_frame(d).image.pixels, full.image.pixels);
+  RenderOptions no_sums;
+  no_sums.layer_variance = true;
+  EXPECT_EQ(render_frame(d, no_sums).image.pixels, full.image.pixels);
 
   const int cuts[] = {0, 1, 6, 7, 13};
   std::vector<Partial> parts;
@@ -164,6 +169,7 @@ TEST_F(PartialFiles, ASubRangeMergesToTheSingleRenderOfThatRange) {
   RenderOptions o;
   o.sample_begin = 3;
   o.sample_end = 9;
+  o.layer_variance = true;
   const FrameResult single = render_frame(d, o);
   const LayeredImage merged =
       merge_partials({render_partial(d, 5, 9, "b"), render_partial(d, 3, 5, "a")});

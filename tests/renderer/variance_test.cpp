@@ -5,7 +5,12 @@
 #include <cmath>
 #include <vector>
 
+#include <filesystem>
+#include <string>
+
+#include "renderer/render/frame.h"
 #include "renderer/render/render.h"
+#include "renderer/scene/scene_loader.h"
 #include "scene_fixtures.h"
 
 namespace vesper::test {
@@ -19,16 +24,21 @@ struct SeedRenders {
   std::vector<std::vector<float>> v;
 };
 
-SeedRenders render_seeds(const SceneDescription& d, int seeds) {
-  const Scene scene = build_scene(d);
+// `layer` "" is the beauty (R, G, B and variance.R/G/B), else `<layer>.R` and
+// `<layer>.variance.R` (rendered with layer_variance, the scene's layers included).
+SeedRenders render_seeds(const SceneDescription& d, int seeds, const std::string& layer = "") {
   SeedRenders out;
   out.seeds = seeds;
   for (int s = 0; s < seeds; ++s) {
     RenderOptions o;
     o.seed = uint64_t(1000 + s);
     o.aovs = std::vector<Aov>{Aov::Variance};
-    const LayeredImage img = render(scene, o).image;
-    const int r = img.channel_index("R"), vr = img.channel_index("variance.R");
+    o.layer_variance = !layer.empty();
+    const LayeredImage img = render_frame(d, o).image;
+    const std::string prefix = layer.empty() ? "" : layer + ".";
+    const int r = img.channel_index(prefix + "R"), vr = img.channel_index(prefix + "variance.R");
+    EXPECT_GE(r, 0);
+    EXPECT_GE(vr, 0);
     std::vector<float> m, v;
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x)
@@ -68,17 +78,20 @@ double variance_z(const SeedRenders& r, size_t first, size_t last, double scale 
 // Four quadrants, each tested at alpha = 0.001 / 4 (Bonferroni): |Z| < 3.48.
 constexpr double kZCritical = 3.48;
 
-void expect_variance_predicts_spread(const SceneDescription& d, const char* label) {
-  const SeedRenders r = render_seeds(d, 40);
+// `power`: a variance off by this factor either way must be rejected (0: not checked).
+void expect_variance_predicts_spread(const SceneDescription& d, const char* label,
+                                     const std::string& layer = "", double power = 2) {
+  const SeedRenders r = render_seeds(d, 40, layer);
   const size_t quarter = r.values / 4;
   for (int q = 0; q < 4; ++q) {
     const size_t first = size_t(q) * quarter, last = first + quarter;
     const double z = variance_z(r, first, last);
     EXPECT_LT(std::abs(z), kZCritical) << label << " quarter " << q << ": Z = " << z;
-    // The test can tell: a variance off by a factor 2 either way is rejected.
-    EXPECT_GT(std::abs(variance_z(r, first, last, 2.0)), kZCritical) << label << " quarter " << q;
-    EXPECT_GT(std::abs(variance_z(r, first, last, 0.5)), kZCritical) << label << " quarter " << q;
   }
+  if (power == 0) return;
+  // The test can tell: a variance off by the factor either way is rejected.
+  EXPECT_GT(std::abs(variance_z(r, 0, r.values, power)), kZCritical) << label;
+  EXPECT_GT(std::abs(variance_z(r, 0, r.values, 1 / power)), kZCritical) << label;
 }
 
 TEST(Variance, PredictsTheSpreadOfPixelMeansAcrossSeeds) {
@@ -87,6 +100,22 @@ TEST(Variance, PredictsTheSpreadOfPixelMeansAcrossSeeds) {
 
 TEST(Variance, HoldsWhenTheSampleCountIsNotAMultipleOfTheStreams) {
   expect_variance_predicts_spread(small_cornell(24, 24, 10), "cornell 10 spp");
+}
+
+TEST(Variance, OfALayerPredictsItsSpreadAcrossSeeds) {
+  // The night room's fog layer (volume paths) and its rays_dense variant
+  // layer (its own render of a modified scene), at 24x16 and 32 spp. Their
+  // noise is heavy-tailed (rare bright paths through the fog), which takes
+  // the Z-test's power (at 40 seeds it does not reliably tell even a factor
+  // 4), so here it checks validity only; the estimator is the beauty's code,
+  // whose power the Cornell box shows.
+  SceneDescription d =
+      load_scene(std::filesystem::path(VESPER_SOURCE_DIR) / "scenes/night-room/scene.json");
+  d.film.width = 24;
+  d.film.height = 16;
+  d.render.spp = 32;
+  expect_variance_predicts_spread(d, "night-room fog", "fog", 0);
+  expect_variance_predicts_spread(d, "night-room rays_dense", "rays_dense", 0);
 }
 
 TEST(Variance, IsNonNegativeAndTheSppChannelCountsTheSamples) {
