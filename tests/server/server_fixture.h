@@ -14,6 +14,7 @@
 
 #include "common/sha256.h"
 #include "server/server.h"
+#include "tests/common/http_blob.h"
 #include "tests/common/temp_dir.h"
 
 namespace vesper {
@@ -74,13 +75,7 @@ class ServerTest : public ::testing::Test {
   }
   // Uploads bytes as a blob; returns the hash.
   std::string put_blob(const std::string& bytes) {
-    const std::string h = sha256_hex(bytes);
-    auto r = client().Put(("/api/v1/blobs/" + h).c_str(), wrk(), bytes, "application/octet-stream");
-    EXPECT_TRUE(r);
-    if (r) {
-      EXPECT_TRUE(r->status == 201 || r->status == 200) << r->body;
-    }
-    return h;
+    return test::upload_blob(client(), wrk(), bytes);
   }
   int64_t submit(int frames, int spp = 8, int split = 0, int max_attempts = 3) {
     const std::string scene = put_blob("{\"format\": \"vesper-scene/1\"}");
