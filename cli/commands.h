@@ -134,6 +134,7 @@ struct SubmitCommandOptions {
   std::string input;
   std::optional<std::string> frames, name;
   std::optional<int> spp, samples_per_task, priority, max_attempts;
+  SamplingFlags sampling;  // the job's budget per frame (docs/farm.md)
   bool wait = false, dry_run = false;
 };
 int run_submit(const SubmitCommandOptions& options);
@@ -177,6 +178,7 @@ int run_regress(const RegressCommandOptions& options);
 struct UpCommandOptions {
   std::string config;
   std::optional<int> workers, spp, samples_per_task;
+  SamplingFlags sampling;
   std::optional<std::string> scene, frames, comp, data_dir, output_dir;
   bool no_comp = false;
 };

@@ -33,6 +33,10 @@ struct FarmJobSettings {
   int samples_per_task = 0;
   int priority = 50;
   int max_attempts = 3;
+  // Per frame (docs/farm.md, "Noise targets and time limits"); 0 = the scene's.
+  double noise_target = 0;
+  int min_spp = 0, max_spp = 0;
+  double time_limit = 0;
 };
 
 struct FarmUpSettings {

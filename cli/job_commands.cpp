@@ -2,9 +2,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cstdio>
-#include <thread>
 
 #include "cli/commands.h"
 #include "cli/fetch.h"
@@ -35,6 +34,23 @@ int with_client(const JobCommandOptions& o, Body&& body) {
 
 const std::string kWorkersPath(protocol::paths::kWorkers);
 
+// The noise each finished frame reached, from its output's metadata (only
+// when some frame's output says: a noise target or a time limit).
+void print_frame_noise(const std::vector<protocol::FrameInfo>& frames) {
+  auto says = [](const protocol::FrameInfo& f) {
+    return f.noise_reached || f.spp_mean || !f.stop_reason.empty();
+  };
+  if (std::none_of(frames.begin(), frames.end(), says)) return;
+  std::printf("%8s %14s %9s  %s\n", "frame", "noise reached", "spp mean", "stopped by");
+  for (const protocol::FrameInfo& f : frames) {
+    if (!says(f)) continue;
+    std::printf("%8d %14s %9s  %s\n", f.frame,
+                f.noise_reached ? fmt::format("{:.4g}", *f.noise_reached).c_str() : "-",
+                f.spp_mean ? fmt::format("{:.1f}", *f.spp_mean).c_str() : "-",
+                f.stop_reason.empty() ? "-" : f.stop_reason.c_str());
+  }
+}
+
 // worker id -> name, for tables people read.
 std::map<std::string, std::string> worker_names(FarmClient& c) {
   std::map<std::string, std::string> names;
@@ -48,18 +64,7 @@ std::map<std::string, std::string> worker_names(FarmClient& c) {
 FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesystem::path& dir) {
   const std::string name =
       client.get_json(protocol::job_path(job)).get<protocol::JobSummary>().name;
-  // Frames whose tasks are all done may still be merging on the server: give
-  // the merges time (a merge reads and writes the frame once; seconds).
-  protocol::FrameList frames;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
-  for (;;) {
-    frames = client.get_json(protocol::frames_path(job)).get<protocol::FrameList>();
-    bool merging = false;
-    for (const protocol::FrameInfo& f : frames.frames)
-      merging = merging || (f.state == protocol::FrameState::Pending && f.done == f.tasks);
-    if (!merging || std::chrono::steady_clock::now() > deadline) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  }
+  const protocol::FrameList frames = wait_for_merges(client, job);
   std::filesystem::create_directories(dir);
   FetchedFrames out;
   out.pattern = (dir / (name + ".####.exr")).string();
@@ -120,6 +125,7 @@ int run_status(const JobCommandOptions& o) {
                   t.reused_from ? fmt::format("(reused task {})", t.reused_from).c_str()
                                 : name_of(t.worker).c_str());
     }
+    print_frame_noise(j.frames);
     return 0;
   });
 }

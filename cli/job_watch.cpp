@@ -1,5 +1,6 @@
 #include "cli/job_watch.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -33,6 +34,21 @@ std::string describe_job(const protocol::JobDetail& j) {
   if (reused > 0)
     s += " (" + std::to_string(reused) +
          " reused from identical tasks done before, not rendered again)";
+  return s + describe_noise(j.frames);
+}
+
+std::string describe_noise(const std::vector<protocol::FrameInfo>& frames) {
+  double worst = 0, spp_sum = 0;
+  int with_noise = 0, with_spp = 0;
+  for (const protocol::FrameInfo& f : frames) {
+    if (f.noise_reached) worst = std::max(worst, *f.noise_reached), ++with_noise;
+    if (f.spp_mean) spp_sum += *f.spp_mean, ++with_spp;
+  }
+  std::string s;
+  if (with_noise > 0)
+    s += fmt::format("; noise reached {:.4g} (the worst of {} frame{})", worst, with_noise,
+                     with_noise == 1 ? "" : "s");
+  if (with_spp > 0) s += fmt::format("; {:.1f} spp on average", spp_sum / with_spp);
   return s;
 }
 
@@ -66,6 +82,19 @@ void report_failed_tasks(const protocol::JobDetail& j, std::set<int64_t>& report
 }
 
 }  // namespace
+
+protocol::FrameList wait_for_merges(FarmClient& client, int64_t job) {
+  protocol::FrameList frames;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  for (;;) {
+    frames = client.get_json(protocol::frames_path(job)).get<protocol::FrameList>();
+    bool merging = false;
+    for (const protocol::FrameInfo& f : frames.frames)
+      merging = merging || (f.state == protocol::FrameState::Pending && f.done == f.tasks);
+    if (!merging || std::chrono::steady_clock::now() > deadline) return frames;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+}
 
 protocol::JobDetail wait_for_job(FarmClient& client, int64_t job, bool show_progress,
                                  const std::function<bool()>& should_stop) {

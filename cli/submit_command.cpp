@@ -1,6 +1,7 @@
 // vesper submit: a scene or a job file to the farm.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -12,9 +13,11 @@
 #include "common/json_parse.h"
 #include "common/json_reader.h"
 #include "jobs/frame_range.h"
+#include "protocol/fields.h"
 #include "protocol/job_messages.h"
 #include "protocol/paths.h"
 #include "renderer/scene/scene_loader.h"
+#include "server/requests.h"
 
 namespace vesper::cli {
 namespace {
@@ -56,6 +59,12 @@ JobRequest job_request_defaults(const FarmSettings& s, const std::filesystem::pa
   r.samples_per_task = s.job.samples_per_task;
   r.priority = s.job.priority;
   r.max_attempts = s.job.max_attempts;
+  // 0 in farm.toml: the scene's.
+  BudgetRequest& b = r.sampling;
+  if (s.job.noise_target > 0) b.budget.noise_target = s.job.noise_target;
+  if (s.job.min_spp > 0) b.budget.min_spp = s.job.min_spp;
+  if (s.job.max_spp > 0) b.max_spp = s.job.max_spp;
+  if (s.job.time_limit > 0) b.budget.time_limit = s.job.time_limit;
   return r;
 }
 
@@ -64,8 +73,10 @@ JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
   JsonReader root(doc, file.string(), "");
   root.expect_object();
   root.child("format").expect_string(kJobFormat);
-  root.allow_keys(
-      {"format", "scene", "name", "frames", "spp", "samples_per_task", "priority", "max_attempts"});
+  namespace f = protocol::field;
+  root.allow_keys({"format", f::kScene, f::kName, f::kFrames, f::kSpp, f::kSamplesPerTask,
+                   f::kPriority, f::kMaxAttempts, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
+                   f::kTimeLimit});
   const std::filesystem::path scene = root.string("scene");
   r.scene = scene.is_relative() ? file.parent_path() / scene : scene;
   r.name = root.has("name") ? root.string("name") : default_job_name(r.scene);
@@ -74,13 +85,53 @@ JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
   r.samples_per_task = int(root.integer("samples_per_task", r.samples_per_task, 0, 1 << 20));
   r.priority = int(root.integer("priority", r.priority, -1000000, 1000000));
   r.max_attempts = int(root.integer("max_attempts", r.max_attempts, 1, 100));
+  // Each key alone here; together with the flags and the scene in settle_job_request.
+  const BudgetRequest keys = read_budget_request(root);
+  BudgetRequest& b = r.sampling;
+  if (keys.budget.noise_target) b.budget.noise_target = keys.budget.noise_target;
+  if (keys.budget.min_spp) b.budget.min_spp = keys.budget.min_spp;
+  if (keys.max_spp) b.max_spp = keys.max_spp;
+  if (keys.budget.time_limit) b.budget.time_limit = keys.budget.time_limit;
   return r;
 }
 
-Submitted submit_job(FarmClient& client, const JobRequest& r, bool dry_run) {
+void apply_sampling_flags(BudgetRequest& b, const SamplingFlags& flags) {
+  if (flags.noise_target) b.budget.noise_target = flags.noise_target;
+  if (flags.min_spp) b.budget.min_spp = flags.min_spp;
+  if (flags.max_spp) b.max_spp = flags.max_spp;
+  if (flags.time_limit) b.budget.time_limit = flags.time_limit;
+}
+
+JobRequest settle_job_request(JobRequest r) {
+  const RenderDesc render = load_scene(r.scene).render;
+  if (r.spp <= 0) r.spp = render.spp;
+  BudgetRequest& b = r.sampling;
+  if (!b.budget.noise_target) b.budget.noise_target = render.noise_target;
+  if (!b.budget.time_limit) b.budget.time_limit = render.time_limit;
+  // The scene's min/max spp go with a noise target only (as for `vesper
+  // render`); the request's own without one are errors below.
+  if (b.budget.noise_target) {
+    if (!b.budget.min_spp) b.budget.min_spp = render.min_spp;
+    if (!b.max_spp) b.max_spp = render.max_spp;
+  }
+  std::optional<BudgetProblem> why = budget_problem(b, r.spp);
+  if (!why && b.frame_spp(r.spp) > kMaxFrameSpp)
+    why = BudgetProblem{"max_spp", "expected at most " + std::to_string(kMaxFrameSpp) + ", got " +
+                                       std::to_string(*b.max_spp)};
+  if (why) {
+    std::string flag = std::string("--") + why->field;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    throw JobRequestError(flag + " (" + why->field + " in a job file, render." + why->field +
+                          " in the scene): " + why->message);
+  }
+  return r;
+}
+
+Submitted submit_job(FarmClient& client, const JobRequest& request, bool dry_run) {
   // The scene is checked here, where its author can fix it, before anything is
-  // uploaded; the frame range too (the server checks again).
-  const SceneDescription desc = load_scene(r.scene);
+  // uploaded (and fills in what the request leaves to it); the frame range
+  // too (the server checks again).
+  const JobRequest r = settle_job_request(request);
   parse_frame_range(r.frames);
   const PackedScene packed = pack_scene(r.scene);
 
@@ -101,10 +152,14 @@ Submitted submit_job(FarmClient& client, const JobRequest& r, bool dry_run) {
   body.scene = client.put_blob(tmp.path);
   body.name = r.name;
   body.frames = r.frames;
-  body.spp = r.spp > 0 ? r.spp : desc.render.spp;
+  body.spp = r.spp;
   body.samples_per_task = r.samples_per_task;
   body.priority = r.priority;
   body.max_attempts = r.max_attempts;
+  body.noise_target = r.sampling.budget.noise_target;
+  body.min_spp = r.sampling.budget.min_spp;
+  body.max_spp = r.sampling.max_spp;
+  body.time_limit = r.sampling.budget.time_limit;
 
   std::string path(protocol::paths::kJobs);
   if (dry_run) path += "?" + std::string(protocol::kDryRunParam) + "=1";
@@ -133,6 +188,7 @@ int run_submit(const SubmitCommandOptions& o) {
     if (o.samples_per_task) r.samples_per_task = *o.samples_per_task;
     if (o.priority) r.priority = *o.priority;
     if (o.max_attempts) r.max_attempts = *o.max_attempts;
+    apply_sampling_flags(r.sampling, o.sampling);
 
     const std::string url = resolve_server_url(settings, o.farm.server);
     FarmClient client(url, resolve_token(settings, url, o.farm.token, TokenRole::Submitter));
@@ -147,10 +203,14 @@ int run_submit(const SubmitCommandOptions& o) {
     std::printf("%lld\n", s.id);
     std::fflush(stdout);
     if (!o.wait) return 0;
-    const protocol::JobDetail j = wait_for_job(client, s.id);
+    protocol::JobDetail j = wait_for_job(client, s.id);
+    j.frames = wait_for_merges(client, s.id).frames;  // a split frame's noise is its merge's
     spdlog::info("{}", describe_job(j));
     return j.summary.counts.done == j.summary.total ? 0 : 3;
   } catch (const SceneError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const JobRequestError& e) {
     spdlog::error("{}", e.what());
     return 2;
   } catch (const FarmConfigError& e) {

@@ -97,6 +97,7 @@ UpPlan plan_up(const UpCommandOptions& o) {
   if (o.frames) p.request.frames = *o.frames;
   if (o.spp) p.request.spp = *o.spp;
   if (o.samples_per_task) p.request.samples_per_task = *o.samples_per_task;
+  apply_sampling_flags(p.request.sampling, o.sampling);
   p.workers = std::max(1, o.workers.value_or(p.settings.up.workers));
   // The workers share this machine's cores: at most `tasks` renders run at
   // once, so each gets cores / min(workers, tasks) threads. (Splitting a frame
@@ -104,12 +105,14 @@ UpPlan plan_up(const UpCommandOptions& o) {
   // each task's own scene setup and a merge — bench/farm_overhead.sh.)
   int concurrent = p.workers;
   try {
-    const JobRequest& r = p.request;
+    const JobRequest r = settle_job_request(p.request);
     const int frames = int(parse_frame_range(r.frames).size());
-    const int spp = r.spp > 0 ? r.spp : load_scene(r.scene).render.spp;
+    const int spp = r.sampling.frame_spp(r.spp);
     const int per_frame =
         r.samples_per_task > 0 ? (spp + r.samples_per_task - 1) / r.samples_per_task : 1;
     concurrent = std::clamp(frames * per_frame, 1, p.workers);
+  } catch (const JobRequestError&) {
+    throw;  // a usage error, before anything starts
   } catch (const std::exception&) {
     // Bad frames or scene: submit_job reports it properly later.
   }
@@ -191,8 +194,7 @@ int submit_wait_fetch(const UpPlan& plan, Server& server, LocalWorkers& workers,
   spdlog::info("submitted job {} '{}': frames {}, {} tasks", s.id, plan.request.name,
                plan.request.frames, s.task_count);
   workers.hide_info();
-  const protocol::JobDetail final_state =
-      wait_for_job(client, s.id, true, [] { return g_stop.load(); });
+  wait_for_job(client, s.id, true, [] { return g_stop.load(); });
   workers.stop();
   if (g_stop) {
     spdlog::warn(
@@ -202,8 +204,10 @@ int submit_wait_fetch(const UpPlan& plan, Server& server, LocalWorkers& workers,
         plan.data_dir.string(), plan.data_dir.string());
     return 130;
   }
-  spdlog::info("{}", describe_job(final_state));
-  fetched = fetch_frames(client, s.id, plan.out_dir);
+  fetched = fetch_frames(client, s.id, plan.out_dir);  // waits for the merges
+  // After the merges: the job with the noise its frames reached.
+  const auto finished = client.get_json(protocol::job_path(s.id)).get<protocol::JobDetail>();
+  spdlog::info("{}", describe_job(finished));
   return fetched.missing.empty() ? 0 : 3;
 }
 

@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "jobs/render_budget.h"
+
 namespace vesper {
 
 // A file the scene references (mesh, OpenVDB grid, environment image), sent
@@ -30,13 +32,14 @@ std::string asset_name_problem(std::string_view name);
 
 struct JobSpec {
   std::string name;
-  std::string scene;        // what the worker renders: a blob hash or path, opaque to the store
-  std::vector<int> frames;  // from parse_frame_range
-  int spp = 16;
+  std::string scene;         // what the worker renders: a blob hash or path, opaque to the store
+  std::vector<int> frames;   // from parse_frame_range
+  int spp = 16;              // samples a pixel of a frame takes (at most, with a noise target)
   int samples_per_task = 0;  // 0 = the whole frame in one task
   int priority = 50;         // higher first
   int max_attempts = 3;
   std::vector<Asset> assets;  // files the scene references, in submission order
+  RenderBudget budget;        // noise target, min spp, time limit of each frame
 };
 
 enum class TaskState { Queued, Leased, Done, Failed, Canceled, Paused };
@@ -65,6 +68,17 @@ struct Lease {
   std::string scene;
   int spp = 0;
   std::vector<Asset> assets;  // the job's assets
+  RenderBudget budget;        // this task's share of its frame's (task_budget)
+};
+
+// What a frame's output says of its noise (its EXR's vesper:* metadata);
+// unset where the output does not say (a fixed-spp render of an older
+// renderer, or not an EXR).
+struct FrameNoise {
+  std::optional<double> noise_reached;  // RMS over pixels of the relative error of the mean
+  std::optional<double> spp_mean;       // samples per pixel, averaged over the pixels
+  std::string stop_reason;              // spp, noise_target, max_spp, time_limit
+  bool operator==(const FrameNoise&) const = default;
 };
 
 // The state of one frame of a job: its tasks and its output (the task's
@@ -75,6 +89,7 @@ struct FrameStatus {
   int tasks = 0, done = 0, failed = 0, canceled = 0;
   std::vector<std::string> results;  // results of the done tasks, by sample_begin
   std::string output;                // the recorded output blob, empty if none yet
+  std::optional<FrameNoise> noise;   // read from the output, once it has been
   bool complete() const { return tasks > 0 && done == tasks; }
 };
 

@@ -39,11 +39,17 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
       .bind(5, renderer)
       .run();
   lease.task = *store.leased_task(lease.lease_id);
-  sql::Stmt job(store.db, "SELECT scene, spp FROM jobs WHERE id = ?1");
+  sql::Stmt job(store.db,
+                "SELECT scene, spp, noise_target, min_spp, time_limit FROM jobs WHERE id = ?1");
   job.bind(1, lease.task.job_id);
   job.step();
   lease.scene = job.text(0);
   lease.spp = int(job.i64(1));
+  RenderBudget frame;
+  frame.noise_target = job.optional_f64(2);
+  if (const auto min_spp = job.optional_i64(3)) frame.min_spp = int(*min_spp);
+  frame.time_limit = job.optional_f64(4);
+  lease.budget = task_budget(frame, lease.spp, lease.task.sample_begin, lease.task.sample_end);
   lease.assets = store.assets(lease.task.job_id);
   return lease;
 }
@@ -73,11 +79,15 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   for (const Asset& a : spec.assets)
     if (const std::string why = asset_name_problem(a.name); !why.empty())
       throw StoreError("job '" + spec.name + "': asset name '" + a.name + "' " + why);
+  if (const auto why = budget_problem(spec.budget, spec.spp))
+    throw StoreError("job '" + spec.name + "': " + why->field + ": " + why->message);
   auto& db = impl_->db;
   sql::Transaction tx(db);
+  const RenderBudget& b = spec.budget;
   sql::Stmt(db,
             "INSERT INTO jobs(name, scene, spp, priority, max_attempts, state, created, "
-            "inputs_key) VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7)")
+            "inputs_key, noise_target, min_spp, time_limit) "
+            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, ?8, ?9, ?10)")
       .bind(1, spec.name)
       .bind(2, spec.scene)
       .bind(3, int64_t(spec.spp))
@@ -85,6 +95,9 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
       .bind(5, int64_t(spec.max_attempts))
       .bind(6, now)
       .bind(7, inputs_key(spec))
+      .bind(8, b.noise_target)
+      .bind(9, b.min_spp ? std::optional<int64_t>(*b.min_spp) : std::nullopt)
+      .bind(10, b.time_limit)
       .run();
   const int64_t job = sqlite3_last_insert_rowid(db.get());
   for (size_t i = 0; i < spec.assets.size(); ++i)
@@ -148,7 +161,8 @@ HeartbeatAnswer JobStore::heartbeat(const std::string& lease_id, double now) {
   return HeartbeatAnswer::KeepRunning;
 }
 
-bool JobStore::complete(const std::string& lease_id, const std::string& result, double now) {
+bool JobStore::complete(const std::string& lease_id, const std::string& result, double now,
+                        const std::optional<FrameNoise>& result_noise) {
   auto& db = impl_->db;
   sql::Transaction tx(db);
   const auto task = impl_->leased_task(lease_id);
@@ -160,7 +174,7 @@ bool JobStore::complete(const std::string& lease_id, const std::string& result, 
       .bind(2, result)
       .run();
   // A frame of one task: its result is the frame's output, recorded with the completion.
-  impl_->record_output_if_single_task_frame(*task, result, now);
+  impl_->record_output_if_single_task_frame(*task, result, now, result_noise);
   tx.commit();
   return true;
 }
@@ -319,6 +333,29 @@ std::vector<std::pair<int64_t, int>> JobStore::frames_awaiting_merge() const {
   std::vector<std::pair<int64_t, int>> out;
   while (s.step()) out.emplace_back(s.i64(0), int(s.i64(1)));
   return out;
+}
+
+std::vector<JobStore::UnreadOutput> JobStore::outputs_without_noise() const {
+  sql::Stmt s(impl_->db,
+              "SELECT job_id, frame, blob FROM frame_outputs WHERE noise_read = 0 "
+              "ORDER BY job_id, frame");
+  std::vector<UnreadOutput> out;
+  while (s.step()) out.push_back({s.i64(0), int(s.i64(1)), s.text(2)});
+  return out;
+}
+
+void JobStore::record_frame_noise(int64_t job, int frame, const FrameNoise& noise) {
+  auto& db = impl_->db;
+  sql::Transaction tx(db);
+  impl_->record_noise(job, frame, noise);
+  if (sqlite3_changes(db.get()) == 0) {
+    sql::Stmt s(db, "SELECT 1 FROM frame_outputs WHERE job_id = ?1 AND frame = ?2");
+    s.bind(1, job).bind(2, int64_t(frame));
+    if (!s.step())
+      throw StoreError("job " + std::to_string(job) + " frame " + std::to_string(frame) +
+                       " has no output; its noise cannot be recorded");
+  }
+  tx.commit();
 }
 
 bool JobStore::blocked(int64_t job, const std::string& worker) const {

@@ -55,7 +55,10 @@ class JobStore {
   HeartbeatAnswer heartbeat(const std::string& lease_id, double now);
   // Both refuse (return false) a lease that is no longer current: expired,
   // re-leased, canceled. Committed results are never touched by stale calls.
-  bool complete(const std::string& lease_id, const std::string& result, double now);
+  // `result_noise`, when given, is what the result says of its noise: a
+  // one-task frame's output is recorded with it, in the same transaction.
+  bool complete(const std::string& lease_id, const std::string& result, double now,
+                const std::optional<FrameNoise>& result_noise = std::nullopt);
   bool fail(const std::string& lease_id, const std::string& log_tail, double now);
   // Requeues tasks whose lease expired (counted as a failed attempt).
   int expire_leases(double now);
@@ -83,6 +86,19 @@ class JobStore {
   // (job, frame) of every finished frame of several tasks that has no output
   // recorded yet: the frames that wait for a merge.
   std::vector<std::pair<int64_t, int>> frames_awaiting_merge() const;
+
+  // Frame outputs whose noise (FrameNoise, in the output's metadata) has not
+  // been read yet, by job and frame. An output recorded with a blob another
+  // frame's read output has (a reused result) takes its noise at once.
+  struct UnreadOutput {
+    int64_t job = 0;
+    int frame = 0;
+    std::string blob;
+  };
+  std::vector<UnreadOutput> outputs_without_noise() const;
+  // Records what a frame's output says of its noise, once (a second record
+  // changes nothing). Throws StoreError if the frame has no output.
+  void record_frame_noise(int64_t job, int frame, const FrameNoise& noise);
 
   struct Impl;
 

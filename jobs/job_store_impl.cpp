@@ -64,7 +64,8 @@ std::vector<Asset> JobStore::Impl::assets(int64_t job) const {
 
 std::vector<FrameStatus> JobStore::Impl::frames(int64_t job, std::optional<int> only) const {
   sql::Stmt s(db,
-              "SELECT t.frame, t.state, t.result, o.blob FROM tasks t LEFT JOIN frame_outputs o "
+              "SELECT t.frame, t.state, t.result, o.blob, o.noise_read, o.noise_reached, "
+              "o.spp_mean, o.stop_reason FROM tasks t LEFT JOIN frame_outputs o "
               "ON o.job_id = t.job_id AND o.frame = t.frame WHERE t.job_id = ?1 AND (?2 = 0 OR "
               "t.frame = ?3) ORDER BY t.frame, t.sample_begin");
   s.bind(1, job).bind(2, int64_t(only ? 1 : 0)).bind(3, int64_t(only.value_or(0)));
@@ -75,6 +76,8 @@ std::vector<FrameStatus> JobStore::Impl::frames(int64_t job, std::optional<int> 
       out.emplace_back();
       out.back().frame = frame;
       out.back().output = s.text(3);
+      if (s.i64(4) != 0)
+        out.back().noise = FrameNoise{s.optional_f64(5), s.optional_f64(6), s.text(7)};
     }
     FrameStatus& f = out.back();
     ++f.tasks;
@@ -98,8 +101,12 @@ std::vector<FrameStatus> JobStore::Impl::frames(int64_t job, std::optional<int> 
 
 std::string JobStore::Impl::record_output(int64_t job, int frame, const std::string& blob,
                                           double now) {
+  // An output already read for another frame (a reused result) brings its noise along.
   sql::Stmt(db,
-            "INSERT INTO frame_outputs(job_id, frame, blob, created) VALUES(?1, ?2, ?3, ?4) "
+            "INSERT INTO frame_outputs(job_id, frame, blob, created, noise_read, noise_reached, "
+            "spp_mean, stop_reason) SELECT ?1, ?2, ?3, ?4, COALESCE(r.noise_read, 0), "
+            "r.noise_reached, r.spp_mean, r.stop_reason FROM (SELECT 1) LEFT JOIN (SELECT * FROM "
+            "frame_outputs WHERE blob = ?3 AND noise_read = 1 LIMIT 1) r ON 1 WHERE 1 "
             "ON CONFLICT(job_id, frame) DO NOTHING")
       .bind(1, job)
       .bind(2, int64_t(frame))
@@ -112,10 +119,24 @@ std::string JobStore::Impl::record_output(int64_t job, int frame, const std::str
 }
 
 void JobStore::Impl::record_output_if_single_task_frame(const Task& task, const std::string& result,
-                                                        double now) {
+                                                        double now,
+                                                        const std::optional<FrameNoise>& noise) {
   const auto frame = frames(task.job_id, task.frame);
-  if (frame.size() == 1 && frame[0].tasks == 1 && frame[0].complete())
-    record_output(task.job_id, task.frame, result, now);
+  if (frame.size() != 1 || frame[0].tasks != 1 || !frame[0].complete()) return;
+  record_output(task.job_id, task.frame, result, now);
+  if (noise) record_noise(task.job_id, task.frame, *noise);
+}
+
+void JobStore::Impl::record_noise(int64_t job, int frame, const FrameNoise& noise) {
+  sql::Stmt(db,
+            "UPDATE frame_outputs SET noise_read = 1, noise_reached = ?3, spp_mean = ?4, "
+            "stop_reason = ?5 WHERE job_id = ?1 AND frame = ?2 AND noise_read = 0")
+      .bind(1, job)
+      .bind(2, int64_t(frame))
+      .bind(3, noise.noise_reached)
+      .bind(4, noise.spp_mean)
+      .bind(5, noise.stop_reason)
+      .run();
 }
 
 void JobStore::Impl::record_failure(int64_t task_id, int64_t job_id, const std::string& worker,

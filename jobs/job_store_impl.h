@@ -35,8 +35,12 @@ struct JobStore::Impl {
 
   // Records a frame's output unless one is recorded already; returns the recorded blob.
   std::string record_output(int64_t job, int frame, const std::string& blob, double now);
-  // A frame of one task: its result, just committed, is the frame's output.
-  void record_output_if_single_task_frame(const Task& task, const std::string& result, double now);
+  // A frame of one task: its result, just committed, is the frame's output
+  // (with `noise`, when given, as what the output says of its noise).
+  void record_output_if_single_task_frame(const Task& task, const std::string& result, double now,
+                                          const std::optional<FrameNoise>& noise = std::nullopt);
+  // Records a frame output's noise unless it was read already.
+  void record_noise(int64_t job, int frame, const FrameNoise& noise);
 
   // Failed attempt bookkeeping shared by fail() and lease expiry.
   void record_failure(int64_t task_id, int64_t job_id, const std::string& worker,

@@ -8,6 +8,11 @@ namespace vesper {
 std::span<const Migration> schema_migrations() { return kEmbeddedMigrations; }
 
 void migrate_schema(sql::Db& db, const std::string& file) {
+  migrate_schema(db, file, schema_migrations(), "job store");
+}
+
+void migrate_schema(sql::Db& db, const std::string& file, std::span<const Migration> migrations,
+                    const std::string& what) {
   db.exec("CREATE TABLE IF NOT EXISTS schema_version(version INTEGER NOT NULL)");
   int version = 0;
   {
@@ -17,10 +22,9 @@ void migrate_schema(sql::Db& db, const std::string& file) {
     else
       db.exec("INSERT INTO schema_version(version) VALUES(0)");
   }
-  const auto migrations = schema_migrations();
   const int latest = int(migrations.size());
   if (version > latest)
-    throw StoreError("job store " + file + " has schema version " + std::to_string(version) +
+    throw StoreError(what + " " + file + " has schema version " + std::to_string(version) +
                      ", newer than this vesper understands (" + std::to_string(latest) + ")");
   for (; version < latest; ++version) db.exec(migrations[size_t(version)].sql);
   sql::Stmt(db, "UPDATE schema_version SET version = ?1").bind(1, int64_t(latest)).run();

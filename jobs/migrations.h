@@ -25,4 +25,9 @@ std::span<const Migration> schema_migrations();
 // for a database newer than this build (`file` names it in the message).
 void migrate_schema(sql::Db& db, const std::string& file);
 
+// The same for another database with its own migrations (embedded the same
+// way, embed_migrations.cmake -DVARIABLE=...); `what` names it in errors.
+void migrate_schema(sql::Db& db, const std::string& file, std::span<const Migration> migrations,
+                    const std::string& what);
+
 }  // namespace vesper

@@ -12,6 +12,11 @@ std::string inputs_key(const JobSpec& spec) {
   for (const Asset& a : spec.assets) assets.push_back(a.name + "=" + a.blob);
   std::sort(assets.begin(), assets.end());
   std::string key = spec.scene + ";spp=" + std::to_string(spec.spp);
+  // Only what is set, so a job without a budget keeps the key it always had.
+  const RenderBudget& b = spec.budget;
+  if (b.noise_target) key += ";noise_target=" + exact_text(*b.noise_target);
+  if (b.min_spp) key += ";min_spp=" + std::to_string(*b.min_spp);
+  if (b.time_limit) key += ";time_limit=" + exact_text(*b.time_limit);
   for (const auto& a : assets) key += ";" + a;
   return key;
 }

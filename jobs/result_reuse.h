@@ -1,6 +1,6 @@
 #pragma once
 // Result reuse: identical tasks are rendered once. Two tasks are identical
-// when their jobs' inputs keys (scene blob, spp, assets), frames and sample
+// when their jobs' inputs keys (scene blob, spp, render budget, assets), frames and sample
 // ranges are equal and the same renderer (an opaque id, e.g. the renderer
 // executable's sha256) produced the done one.
 #include <cstdint>
@@ -11,7 +11,9 @@
 namespace vesper {
 
 // What makes two jobs' tasks identical besides their frame and sample range:
-// the scene blob, the spp and the assets (name=blob, in name order).
+// the scene blob, the spp, the render budget (noise target, min spp, time
+// limit: a different target is a different result) and the assets
+// (name=blob, in name order).
 std::string inputs_key(const JobSpec& spec);
 
 // Completes queued task `task_id` with the result of an identical task already

@@ -2,14 +2,14 @@
 
 namespace vesper::sql {
 
-Db::Db(const std::string& path) : path_(path) {
+Db::Db(const std::string& path, std::string what) : path_(path), what_(std::move(what)) {
   if (sqlite3_open_v2(path.c_str(), &db_,
                       SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
                       nullptr) != SQLITE_OK) {
     const std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
-    throw StoreError("cannot open job store " + path + ": " + msg);
+    throw StoreError("cannot open " + what_ + " " + path + ": " + msg);
   }
   sqlite3_busy_timeout(db_, 5000);
 }
@@ -17,7 +17,7 @@ Db::Db(const std::string& path) : path_(path) {
 Db::~Db() { sqlite3_close(db_); }
 
 void Db::fail(const std::string& what) const {
-  throw StoreError("job store " + path_ + ": " + what + ": " + sqlite3_errmsg(db_));
+  throw StoreError(what_ + " " + path_ + ": " + what + ": " + sqlite3_errmsg(db_));
 }
 
 void Db::exec(const std::string& sql) {
@@ -25,7 +25,7 @@ void Db::exec(const std::string& sql) {
   if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
     const std::string msg = err ? err : "";
     sqlite3_free(err);
-    throw StoreError("job store " + path_ + ": " + msg + " (in: " + sql.substr(0, 60) + ")");
+    throw StoreError(what_ + " " + path_ + ": " + msg + " (in: " + sql.substr(0, 60) + ")");
   }
 }
 
@@ -44,6 +44,10 @@ Stmt& Stmt::bind(int i, double v) {
 }
 Stmt& Stmt::bind(int i, const std::string& v) {
   sqlite3_bind_text(s_, i, v.c_str(), int(v.size()), SQLITE_TRANSIENT);
+  return *this;
+}
+Stmt& Stmt::bind_null(int i) {
+  sqlite3_bind_null(s_, i);
   return *this;
 }
 bool Stmt::step() {

@@ -5,6 +5,7 @@
 #include <sqlite3.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "jobs/job_store.h"
@@ -13,7 +14,8 @@ namespace vesper::sql {
 
 class Db {
  public:
-  explicit Db(const std::string& path);
+  // `what` names the database in errors ("job store", "regression history").
+  explicit Db(const std::string& path, std::string what = "job store");
   ~Db();
   Db(const Db&) = delete;
   Db& operator=(const Db&) = delete;
@@ -23,7 +25,7 @@ class Db {
 
  private:
   sqlite3* db_ = nullptr;
-  std::string path_;
+  std::string path_, what_;
 };
 
 class Stmt {
@@ -35,6 +37,12 @@ class Stmt {
   Stmt& bind(int i, int64_t v);
   Stmt& bind(int i, double v);
   Stmt& bind(int i, const std::string& v);
+  Stmt& bind_null(int i);
+  // An unset optional binds NULL.
+  template <class T>
+  Stmt& bind(int i, const std::optional<T>& v) {
+    return v ? bind(i, *v) : bind_null(i);
+  }
   bool step();  // true: a row is available
   void run() {
     while (step()) {
@@ -42,6 +50,13 @@ class Stmt {
   }
   int64_t i64(int col) const { return sqlite3_column_int64(s_, col); }
   double f64(int col) const { return sqlite3_column_double(s_, col); }
+  bool is_null(int col) const { return sqlite3_column_type(s_, col) == SQLITE_NULL; }
+  std::optional<double> optional_f64(int col) const {
+    return is_null(col) ? std::nullopt : std::optional<double>(f64(col));
+  }
+  std::optional<int64_t> optional_i64(int col) const {
+    return is_null(col) ? std::nullopt : std::optional<int64_t>(i64(col));
+  }
   std::string text(int col) const {
     const auto* t = sqlite3_column_text(s_, col);
     return t ? reinterpret_cast<const char*>(t) : "";

@@ -42,6 +42,15 @@ inline constexpr const char* kTasks = "tasks";
 inline constexpr const char* kBlockedWorkers = "blocked_workers";
 inline constexpr const char* kRequeued = "requeued";
 
+// Noise targets and time limits (a job's render budget) and what a frame reached
+inline constexpr const char* kNoiseTarget = "noise_target";
+inline constexpr const char* kMinSpp = "min_spp";
+inline constexpr const char* kMaxSpp = "max_spp";
+inline constexpr const char* kTimeLimit = "time_limit";
+inline constexpr const char* kNoiseReached = "noise_reached";
+inline constexpr const char* kSppMean = "spp_mean";
+inline constexpr const char* kStopReason = "stop_reason";
+
 // Tasks
 inline constexpr const char* kJobId = "job_id";
 inline constexpr const char* kSampleBegin = "sample_begin";

@@ -30,7 +30,11 @@ VESPER_JSON_FIELDS(SubmitRequest, required(f::kName, &SubmitRequest::name),
                    required(f::kSamplesPerTask, &SubmitRequest::samples_per_task),
                    required(f::kPriority, &SubmitRequest::priority),
                    required(f::kMaxAttempts, &SubmitRequest::max_attempts),
-                   optional(f::kAssets, &SubmitRequest::assets))
+                   optional(f::kAssets, &SubmitRequest::assets),
+                   optional(f::kNoiseTarget, &SubmitRequest::noise_target),
+                   optional(f::kMinSpp, &SubmitRequest::min_spp),
+                   optional(f::kMaxSpp, &SubmitRequest::max_spp),
+                   optional(f::kTimeLimit, &SubmitRequest::time_limit))
 VESPER_JSON_FIELDS(SubmitResponse, required(f::kId, &SubmitResponse::id),
                    required(f::kTaskCount, &SubmitResponse::task_count))
 VESPER_JSON_FIELDS(DryRunResponse, required(f::kDryRun, &DryRunResponse::dry_run),
@@ -62,7 +66,10 @@ VESPER_JSON_FIELDS(JobActionResponse, required(f::kJob, &JobActionResponse::job)
 VESPER_JSON_FIELDS(FrameInfo, required(f::kFrame, &FrameInfo::frame),
                    required(f::kState, &FrameInfo::state), required(f::kTasks, &FrameInfo::tasks),
                    required(f::kDone, &FrameInfo::done), optional(f::kBlob, &FrameInfo::blob),
-                   optional(f::kError, &FrameInfo::error))
+                   optional(f::kError, &FrameInfo::error),
+                   optional(f::kNoiseReached, &FrameInfo::noise_reached),
+                   optional(f::kSppMean, &FrameInfo::spp_mean),
+                   optional(f::kStopReason, &FrameInfo::stop_reason))
 VESPER_JSON_FIELDS(FrameList, required(f::kFrames, &FrameList::frames))
 VESPER_JSON_FIELDS(WorkerInfo, required(f::kWorkerId, &WorkerInfo::worker_id),
                    required(f::kName, &WorkerInfo::name),
@@ -78,7 +85,8 @@ namespace {
 // The fields JobDetail adds to its summary's (one flat object on the wire).
 constexpr auto kJobDetailFields =
     std::tuple{required(f::kTasks, &JobDetail::tasks),
-               required(f::kBlockedWorkers, &JobDetail::blocked_workers)};
+               required(f::kBlockedWorkers, &JobDetail::blocked_workers),
+               optional(f::kFrames, &JobDetail::frames)};
 constexpr const char* kFrameStates[] = {"pending", "ready", "failed"};  // by FrameState
 }  // namespace
 

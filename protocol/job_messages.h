@@ -26,6 +26,11 @@ struct SubmitRequest {
   int priority = 50;         // higher first
   int max_attempts = 3;
   std::vector<AssetRef> assets;  // left out of the JSON when empty
+  // Adaptive sampling and a time budget (docs/farm.md, "Noise targets and
+  // time limits"), as `vesper render` takes them; each left out when unset.
+  std::optional<double> noise_target;   // relative error of each pixel's mean, > 0
+  std::optional<int> min_spp, max_spp;  // with noise_target; max_spp replaces spp
+  std::optional<double> time_limit;     // seconds of rendering per frame, > 0
 };
 
 // 201 answer to POST /jobs.
@@ -76,19 +81,6 @@ struct TaskInfo {
   int64_t reused_from = 0;         // 0: rendered (left out of the JSON)
 };
 
-// GET /jobs/{id}: the summary's fields plus these.
-struct JobDetail {
-  JobSummary summary;
-  std::vector<TaskInfo> tasks;
-  std::vector<std::string> blocked_workers;  // worker ids on the job's blocklist
-};
-
-// POST /jobs/{id}/cancel|pause|resume|retry-failed
-struct JobActionResponse {
-  JobSummary job;
-  std::optional<int> requeued;  // retry-failed only
-};
-
 // A frame in GET /jobs/{id}/frames.
 enum class FrameState { Pending, Ready, Failed };
 struct FrameInfo {
@@ -97,6 +89,25 @@ struct FrameInfo {
   int tasks = 0, done = 0;
   std::string blob;   // Ready: the output blob (left out when empty)
   std::string error;  // Failed: why (left out when empty)
+  // Ready, from the output's metadata (left out when it does not say).
+  std::optional<double> noise_reached;  // RMS over pixels of the relative error of the mean
+  std::optional<double> spp_mean;       // samples per pixel, averaged over the pixels
+  std::string stop_reason;              // spp, noise_target, max_spp, time_limit
+  bool operator==(const FrameInfo&) const = default;
+};
+
+// GET /jobs/{id}: the summary's fields plus these.
+struct JobDetail {
+  JobSummary summary;
+  std::vector<TaskInfo> tasks;
+  std::vector<std::string> blocked_workers;  // worker ids on the job's blocklist
+  std::vector<FrameInfo> frames;             // as GET /jobs/{id}/frames lists them
+};
+
+// POST /jobs/{id}/cancel|pause|resume|retry-failed
+struct JobActionResponse {
+  JobSummary job;
+  std::optional<int> requeued;  // retry-failed only
 };
 
 struct FrameList {

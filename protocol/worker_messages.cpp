@@ -27,7 +27,10 @@ VESPER_JSON_FIELDS(LeaseResponse, required(f::kLeaseId, &LeaseResponse::lease_id
                    required(f::kScene, &LeaseResponse::scene),
                    required(f::kSpp, &LeaseResponse::spp),
                    required(f::kAssets, &LeaseResponse::assets),
-                   required(f::kTask, &LeaseResponse::task))
+                   required(f::kTask, &LeaseResponse::task),
+                   optional(f::kNoiseTarget, &LeaseResponse::noise_target),
+                   optional(f::kMinSpp, &LeaseResponse::min_spp),
+                   optional(f::kTimeLimit, &LeaseResponse::time_limit))
 VESPER_JSON_FIELDS(HeartbeatRequest, required(f::kLeaseId, &HeartbeatRequest::lease_id),
                    required(f::kProgress, &HeartbeatRequest::progress))
 VESPER_JSON_FIELDS(HeartbeatResponse, required(f::kAnswer, &HeartbeatResponse::answer))

@@ -5,6 +5,7 @@
 // from_json throws nlohmann::json::exception on a missing key or wrong type
 // (the server validates requests itself, with JSON paths in its errors).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,9 +52,15 @@ struct LeaseResponse {
   double expiry = 0;     // the server's clock, seconds
   double lease_seconds = 0;
   std::string scene;  // blob
-  int spp = 0;
+  int spp = 0;        // the frame's samples (the most a pixel takes, with a noise target)
   std::vector<AssetRef> assets;
   LeasedTask task;
+  // This task's share of its frame's render budget (jobs/render_budget.h),
+  // passed to `vesper render` as --noise-target, --min-spp, --time-limit;
+  // each left out when unset.
+  std::optional<double> noise_target;
+  std::optional<int> min_spp;
+  std::optional<double> time_limit;
 };
 
 // POST /heartbeat

@@ -14,4 +14,10 @@ const char* verdict_name(Verdict v) {
   return "error";
 }
 
+std::optional<Verdict> parse_verdict(std::string_view name) {
+  for (Verdict v : {Verdict::Pass, Verdict::Regressed, Verdict::Error})
+    if (name == verdict_name(v)) return v;
+  return std::nullopt;
+}
+
 }  // namespace vesper::regress

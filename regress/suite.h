@@ -5,9 +5,10 @@
 // "thresholds": {...}}]}. Paths are relative to the suite file.
 #include <filesystem>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "common/json_error.h"
 
 namespace vesper::regress {
 
@@ -22,11 +23,11 @@ struct Thresholds {
 };
 
 struct SuiteScene {
-  std::string name;                    // unique in the suite; [A-Za-z0-9_.-]+
-  std::filesystem::path scene;         // absolute (resolved against the suite's folder)
-  std::optional<int> spp;              // exactly one of spp, noise_target
+  std::string name;             // unique in the suite; [A-Za-z0-9_.-]+
+  std::filesystem::path scene;  // absolute (resolved against the suite's folder)
+  std::optional<int> spp;       // exactly one of spp, noise_target
   std::optional<double> noise_target;
-  std::string frames = "1";            // frame list as `vesper up --frames` takes it
+  std::string frames = "1";                        // frame list as `vesper up --frames` takes it
   std::optional<std::vector<std::string>> layers;  // default: every layer in the EXR
   Thresholds thresholds;
 };
@@ -36,8 +37,11 @@ struct Suite {
   std::vector<SuiteScene> scenes;
 };
 
-struct SuiteError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+// A rejected suite: file(), json_path() and message() as for scenes
+// (common/json_error.h); what() reads "<file>: <json path>: <message>".
+class SuiteError : public JsonError {
+ public:
+  using JsonError::JsonError;
 };
 
 // Reads and validates everything (unknown keys, types, ranges, duplicate

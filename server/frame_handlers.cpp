@@ -5,29 +5,12 @@
 #include "protocol/job_messages.h"
 #include "server/api_error.h"
 #include "server/blob_store.h"
+#include "server/frame_info.h"
 #include "server/frame_merger.h"
 #include "server/locked_store.h"
 
 namespace vesper {
 namespace {
-
-using protocol::FrameState;
-
-protocol::FrameInfo frame_info(const FrameStatus& f, const std::map<int, std::string>& failures) {
-  protocol::FrameInfo out{f.frame, FrameState::Pending, f.tasks, f.done, {}, {}};
-  if (!f.output.empty() || (f.complete() && f.tasks == 1)) {
-    out.state = FrameState::Ready;
-    out.blob = f.output.empty() ? f.results[0] : f.output;
-  } else if (f.failed + f.canceled > 0) {
-    out.state = FrameState::Failed;
-    out.error =
-        std::to_string(f.failed) + " task(s) failed, " + std::to_string(f.canceled) + " canceled";
-  } else if (auto it = failures.find(f.frame); f.complete() && it != failures.end()) {
-    out.state = FrameState::Failed;
-    out.error = it->second;
-  }
-  return out;
-}
 
 // The HTTP status of a frame that is not ready.
 int status_of(FrameMerger::State s) {

@@ -9,6 +9,7 @@
 #include "common/sha256.h"
 #include "jobs/job_store.h"
 #include "server/blob_store.h"
+#include "server/frame_noise.h"
 #include "server/locked_store.h"
 #include "server/merge.h"
 #include "server/server_clock.h"
@@ -152,12 +153,17 @@ FrameMerger::Output FrameMerger::merge(int64_t job, int frame,
     ss << in.rdbuf();
     bytes = ss.str();
   }
+  const FrameNoise noise = read_frame_noise(out);  // the merged frame's, from its header
   std::error_code ec;
   fs::remove(out, ec);
   const std::string hash = sha256_hex(bytes);
   blobs_.put(hash, bytes);
-  const std::string recorded = store_.with(
-      [&](JobStore& s) { return s.record_frame_output(job, frame, hash, clock_.now()); });
+  // The frame is never seen ready without its noise: both under one lock.
+  const std::string recorded = store_.with([&](JobStore& s) {
+    const std::string r = s.record_frame_output(job, frame, hash, clock_.now());
+    s.record_frame_noise(job, frame, noise);  // changes nothing if another merge recorded first
+    return r;
+  });
   spdlog::info("{}: merged into {} in {:.2f} s", frame_name(job, frame), recorded,
                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   return {State::Ready, recorded, {}};
@@ -206,6 +212,9 @@ void FrameMerger::loop() {
       if (stopping_.load()) return;
       scan_ = false;
     }
+    // Outputs recorded without their noise: by an older server (at start), or
+    // reused from one (after a lease).
+    record_frame_noise(store_, blobs_);
     if (merger_.empty()) continue;
     std::vector<std::pair<int64_t, int>> todo;
     try {

@@ -16,12 +16,13 @@ class ServerClock;
 class ServerCounters;
 class WorkerRegistry;
 
-// Jobs (submitter token): submit, list, one job with its tasks,
+// Jobs (submitter token): submit, list, one job with its tasks and frames,
 // cancel/pause/resume/retry-failed, a task's log. job_handlers.cpp
 struct JobHandlerDeps {
   LockedStore& store;
   const BlobStore& blobs;
   const LeaseTracker& leases;  // progress of leased tasks
+  const FrameMerger& merger;   // failed merges, for the frames' states
   ServerClock& clock;
 };
 void add_job_handlers(HandlerTable& table, const JobHandlerDeps& deps);
@@ -37,7 +38,8 @@ struct WorkerHandlerDeps {
   ServerCounters& counters;
   ServerClock& clock;
   double lease_seconds;
-  // Tasks were completed: a frame of several tasks may be ready to merge.
+  // Tasks were completed: a frame of several tasks may be ready to merge (a
+  // reused output may have noise to read).
   std::function<void()> tasks_completed;
 };
 void add_worker_handlers(HandlerTable& table, const WorkerHandlerDeps& deps);

@@ -8,6 +8,8 @@
 #include "protocol/job_messages.h"
 #include "server/api_error.h"
 #include "server/blob_store.h"
+#include "server/frame_info.h"
+#include "server/frame_merger.h"
 #include "server/lease_tracker.h"
 #include "server/locked_store.h"
 #include "server/requests.h"
@@ -74,11 +76,15 @@ ApiResponse get(const JobHandlerDeps& d, const ApiRequest& req) {
   const int64_t id = id_param(req, 0);
   protocol::JobDetail out;
   std::vector<Task> tasks;
+  std::vector<FrameStatus> frames;
   d.store.with([&](JobStore& s) {
     out.summary = to_wire(require_job(s, id));
     tasks = s.tasks(id);
     out.blocked_workers = s.blocked_workers(id);
+    frames = s.frames(id);
   });
+  const std::map<int, std::string> merge_failures = d.merger.failures(id);
+  for (const FrameStatus& f : frames) out.frames.push_back(frame_info(f, merge_failures));
   const std::map<int64_t, double> progress = d.leases.progress_by_task();
   for (const Task& t : tasks) {
     protocol::TaskInfo ti = to_wire(t);

@@ -122,18 +122,23 @@ std::vector<int> read_frames(const JsonReader& frames) {
 
 JobSpec read_job(JsonReader& o) {
   o.allow_keys({f::kName, f::kScene, f::kFrames, f::kSpp, f::kSamplesPerTask, f::kPriority,
-                f::kMaxAttempts, f::kAssets});
+                f::kMaxAttempts, f::kAssets, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
+                f::kTimeLimit});
   JobSpec spec;
   const auto name = o.optional_child(f::kName);
   spec.name = name ? name->as_string(/*allow_empty=*/true) : "job";
   if (spec.name.size() > 256) o.fail_key(f::kName, "name longer than 256 characters");
   spec.scene = sha256_at(o, f::kScene, "an uploaded scene blob");
   spec.frames = read_frames(required(o, f::kFrames));
-  spec.spp = int(o.integer(f::kSpp, spec.spp, 1, 1 << 20));
+  spec.spp = int(o.integer(f::kSpp, spec.spp, 1, kMaxFrameSpp));
   spec.samples_per_task = int(o.integer(f::kSamplesPerTask, 0, 0, 1 << 20));
   spec.priority = int(o.integer(f::kPriority, spec.priority, -1000000, 1000000));
   spec.max_attempts = int(o.integer(f::kMaxAttempts, spec.max_attempts, 1, 100));
   if (const auto assets = o.optional_child(f::kAssets)) spec.assets = read_assets(*assets);
+  const BudgetRequest budget = read_budget_request(o);
+  if (const auto why = budget_problem(budget, spec.spp)) o.fail_key(why->field, why->message);
+  spec.spp = budget.frame_spp(spec.spp);
+  spec.budget = budget.budget;
   const int64_t n = task_count(spec);
   if (n > kMaxTasksPerJob)
     o.fail_key(spec.samples_per_task > 0 ? f::kSamplesPerTask : f::kFrames,
@@ -144,6 +149,18 @@ JobSpec read_job(JsonReader& o) {
 }
 
 }  // namespace
+
+BudgetRequest read_budget_request(JsonReader& o) {
+  BudgetRequest r;
+  if (const auto v = o.optional_child(f::kNoiseTarget))
+    r.budget.noise_target = v->as_number(Range::positive());
+  if (const auto v = o.optional_child(f::kMinSpp))
+    r.budget.min_spp = int(v->as_integer(1, kMaxFrameSpp));
+  if (const auto v = o.optional_child(f::kMaxSpp)) r.max_spp = int(v->as_integer(1, kMaxFrameSpp));
+  if (const auto v = o.optional_child(f::kTimeLimit))
+    r.budget.time_limit = v->as_number(Range::positive());
+  return r;
+}
 
 int64_t task_count(const JobSpec& spec) {
   const int64_t split = spec.samples_per_task > 0 ? spec.samples_per_task : spec.spp;

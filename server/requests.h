@@ -14,8 +14,11 @@
 
 namespace vesper {
 
+class JsonReader;
+
 // A submitted job: {"name", "scene", "frames", "spp", "samples_per_task",
-// "priority", "max_attempts", "assets"}. `frames` is a frame-range string
+// "priority", "max_attempts", "assets", "noise_target", "min_spp", "max_spp",
+// "time_limit"}. `frames` is a frame-range string
 // ("1-10x2", "1,5,9") or an array of integers; `scene` must be a SHA-256 (the
 // existence of the blob is checked by the server). Limits: spp <= 1<<20, at
 // most kMaxTasksPerJob tasks, kMaxAssetsPerJob assets. "assets": [{"name":
@@ -23,9 +26,18 @@ namespace vesper {
 // asset_name_problem (jobs/job.h), unique, not "scene.json", and no name is
 // the directory of another; blobs are SHA-256 spellings (their existence is
 // checked by the server). Errors name "/assets/3/name" etc.
+// The render budget keys "noise_target", "min_spp", "max_spp" and
+// "time_limit" (jobs/render_budget.h): with max_spp the frame's spp is
+// max_spp; min_spp and max_spp need a noise target, min_spp <= the frame's
+// spp. Errors name the key ("/min_spp").
 constexpr int64_t kMaxTasksPerJob = 100000;
+constexpr int kMaxFrameSpp = 1 << 20;  // samples a pixel of a frame may take
 constexpr int64_t kMaxAssetsPerJob = 10000;
 JobSpec read_job_request(const std::string& body);
+// The render budget keys of `object` (a submit body, a job file), each
+// checked alone: noise_target and time_limit positive numbers, min_spp and
+// max_spp integers in [1, 2^20]. Unset when absent.
+BudgetRequest read_budget_request(JsonReader& object);
 // Tasks `spec` splits into (what the store will create).
 int64_t task_count(const JobSpec& spec);
 

@@ -68,7 +68,7 @@ struct Server::Impl {
 
   HandlerTable handlers() {
     HandlerTable table;
-    add_job_handlers(table, {store, blobs, leases, clock});
+    add_job_handlers(table, {store, blobs, leases, merger, clock});
     add_worker_handlers(table, {store, blobs, workers, leases, counters, clock,
                                 config.lease_seconds, [this] { merger.wake(); }});
     add_frame_handlers(table, {store, blobs, merger});

@@ -9,6 +9,7 @@
 #include "protocol/worker_messages.h"
 #include "server/api_error.h"
 #include "server/blob_store.h"
+#include "server/frame_noise.h"
 #include "server/lease_tracker.h"
 #include "server/locked_store.h"
 #include "server/metrics.h"
@@ -73,11 +74,19 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
   }
   d.counters.lease_granted();
   d.leases.granted(l->lease_id, l->task.id, r.worker_id, l->expiry);
-  protocol::LeaseResponse out{l->lease_id, l->expiry, d.lease_seconds, l->scene, l->spp, {}, {}};
+  protocol::LeaseResponse out;
+  out.lease_id = l->lease_id;
+  out.expiry = l->expiry;
+  out.lease_seconds = d.lease_seconds;
+  out.scene = l->scene;
+  out.spp = l->spp;
   for (const Asset& a : l->assets) out.assets.push_back({a.name, a.blob});
   const Task& task = l->task;
   out.task = {task.id,           task.job_id,     task.frame,
               task.sample_begin, task.sample_end, task.attempts + 1};
+  out.noise_target = l->budget.noise_target;
+  out.min_spp = l->budget.min_spp;
+  out.time_limit = l->budget.time_limit;
   return json_response(200, out);
 }
 
@@ -94,13 +103,18 @@ ApiResponse heartbeat(const WorkerHandlerDeps& d, const ApiRequest& req) {
 
 ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
   const auto r = read_complete_request(req.body);
-  if (!d.blobs.exists(r.result))
+  const auto result_file = d.blobs.file(r.result);
+  if (!result_file)
     throw ApiError(400,
                    "no blob " + r.result + ": upload the result first (PUT " +
                        protocol::api(protocol::paths::kBlob) + ")",
                    std::string("/") + f::kResult);
+  // Read before the completion, so a one-task frame is never seen done
+  // without its noise (a partial is not an EXR: read as saying nothing).
+  const FrameNoise noise = read_frame_noise(*result_file);
   const double t = d.clock.now();
-  const bool done = d.store.with([&](JobStore& s) { return s.complete(r.lease_id, r.result, t); });
+  const bool done =
+      d.store.with([&](JobStore& s) { return s.complete(r.lease_id, r.result, t, noise); });
   d.leases.note(r.lease_id, t, true);
   if (!done) stale(r.lease_id);
   d.tasks_completed();  // the task may have finished a frame of several tasks

@@ -1,5 +1,7 @@
 #include "worker/render_command.h"
 
+#include "jobs/render_budget.h"
+
 namespace vesper::worker_detail {
 
 bool renders_partial(const protocol::LeaseResponse& lease) {
@@ -24,6 +26,18 @@ std::vector<std::string> render_command(const protocol::LeaseResponse& lease,
                                    "--frame",
                                    std::to_string(lease.task.frame)};
   if (renders_partial(lease)) argv.push_back("--partial");
+  // This task's share of its frame's budget (jobs/render_budget.h).
+  auto add = [&argv](const char* flag, const std::string& value) {
+    argv.push_back(flag);
+    argv.push_back(value);
+  };
+  if (lease.noise_target) {
+    add("--noise-target", exact_text(*lease.noise_target));
+    // The frame's spp is the job's, whatever render.max_spp the scene says.
+    add("--max-spp", std::to_string(lease.spp));
+  }
+  if (lease.min_spp) add("--min-spp", std::to_string(*lease.min_spp));
+  if (lease.time_limit) add("--time-limit", exact_text(*lease.time_limit));
   if (config.render_threads > 0) {
     argv.push_back("--threads");
     argv.push_back(std::to_string(config.render_threads));
@@ -33,6 +47,14 @@ std::vector<std::string> render_command(const protocol::LeaseResponse& lease,
 
 std::string render_output_extension(const protocol::LeaseResponse& lease) {
   return renders_partial(lease) ? ".vpartial" : ".exr";
+}
+
+std::string describe_budget(const protocol::LeaseResponse& l) {
+  std::string s;
+  if (l.noise_target) s += ", noise target " + exact_text(*l.noise_target);
+  if (l.min_spp) s += " (min spp " + std::to_string(*l.min_spp) + ")";
+  if (l.time_limit) s += ", time limit " + exact_text(*l.time_limit) + " s";
+  return s;
 }
 
 std::string command_line(const std::vector<std::string>& argv) {

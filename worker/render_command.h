@@ -11,7 +11,11 @@
 namespace vesper::worker_detail {
 
 // `vesper render <scene_file> -o <output> --spp S --sample-begin B
-// --sample-end E --frame F [--partial] [--threads N]`. No --seed: the
+// --sample-end E --frame F [--partial] [--noise-target X --max-spp S]
+// [--min-spp M] [--time-limit T] [--threads N]`: the budget flags are the
+// task's share of its frame's budget, as the lease carries it (exact: the
+// shortest text of each double); --max-spp pins the frame's spp to the job's
+// over the scene's render.max_spp. No --seed: the
 // renderer takes the scene's own render.seed, and --frame decorrelates the
 // frames from it, exactly as a local `vesper render --frame F` does. No -q:
 // the render's plain progress lines on stderr feed the heartbeat's progress
@@ -27,6 +31,9 @@ std::vector<std::string> render_command(const protocol::LeaseResponse& lease,
 
 // ".vpartial" for a sample range that is not the whole frame, else ".exr".
 std::string render_output_extension(const protocol::LeaseResponse& lease);
+
+// ", noise target 0.02 (min spp 16), time limit 7.5 s" for logs; "" without a budget.
+std::string describe_budget(const protocol::LeaseResponse& lease);
 
 // argv joined with spaces, for logs.
 std::string command_line(const std::vector<std::string>& argv);

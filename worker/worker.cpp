@@ -211,9 +211,9 @@ WorkerState Worker::Impl::lease() {
 // fetch → run → upload → complete; a problem at any step fails the task
 // (the worker carries on).
 void Worker::Impl::work_on(const protocol::LeaseResponse& l) {
-  spdlog::info("task {} (job {}, frame {}, samples [{}, {}) of {}, attempt {}): leased", l.task.id,
-               l.task.job_id, l.task.frame, l.task.sample_begin, l.task.sample_end, l.spp,
-               l.task.attempt);
+  spdlog::info("task {} (job {}, frame {}, samples [{}, {}) of {}{}, attempt {}): leased",
+               l.task.id, l.task.job_id, l.task.frame, l.task.sample_begin, l.task.sample_end,
+               l.spp, describe_budget(l), l.task.attempt);
   const std::optional<fs::path> task_dir = fetch(l);
   if (!task_dir) return;
   double seconds = 0;

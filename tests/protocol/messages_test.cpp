@@ -91,6 +91,70 @@ TEST(JobMessagesTest, SubmitRequestCarriesFramesAsStringOrList) {
   EXPECT_THROW(json::parse(R"([1])").get<SubmitRequest>(), json::exception);
 }
 
+// A message with a render budget (submit, lease) leaves its keys out when
+// unset, writes them when set, and reads them back.
+template <class T>
+void expect_budget_travels(T m) {
+  const json unset = m;
+  EXPECT_FALSE(unset.contains("noise_target") || unset.contains("min_spp") ||
+               unset.contains("time_limit"));
+  EXPECT_FALSE(round_trip(m).noise_target);
+  m.noise_target = 0.015;
+  m.min_spp = 4;
+  m.time_limit = 90.5;
+  const json j = m;
+  EXPECT_EQ(j.at("noise_target"), 0.015);
+  EXPECT_EQ(j.at("min_spp"), 4);
+  EXPECT_EQ(j.at("time_limit"), 90.5);
+  const T back = round_trip(m);
+  EXPECT_EQ(back.noise_target, 0.015);
+  EXPECT_EQ(back.min_spp, 4);
+  EXPECT_EQ(back.time_limit, 90.5);
+}
+
+TEST(JobMessagesTest, TheRenderBudgetTravelsWhenSetAndIsLeftOutOtherwise) {
+  SubmitRequest s;
+  s.scene = "S";
+  s.frames = std::string("1");
+  expect_budget_travels(s);
+  EXPECT_FALSE(json(s).contains("max_spp"));
+  s.max_spp = 256;
+  EXPECT_EQ(json(s).at("max_spp"), 256);
+  EXPECT_EQ(round_trip(s).max_spp, 256);
+  EXPECT_THROW(json::parse(R"({"name": "j", "scene": "S", "frames": "1", "spp": 1,
+                  "samples_per_task": 0, "priority": 1, "max_attempts": 1,
+                  "noise_target": "low"})")
+                   .get<SubmitRequest>(),
+               json::exception);
+
+  LeaseResponse l;
+  l.task = {3, 1, 5, 64, 128, 1};
+  expect_budget_travels(l);
+}
+
+TEST(JobMessagesTest, AReadyFrameCarriesTheNoiseItReached) {
+  const FrameInfo f{4, FrameState::Ready, 2, 2, "B", "", 0.0123, 37.25, "noise_target"};
+  const json j = f;
+  EXPECT_EQ(j, json::parse(R"({"frame": 4, "state": "ready", "tasks": 2, "done": 2, "blob": "B",
+                "noise_reached": 0.0123, "spp_mean": 37.25, "stop_reason": "noise_target"})"));
+  const FrameInfo back = round_trip(f);
+  EXPECT_EQ(back.noise_reached, 0.0123);
+  EXPECT_EQ(back.spp_mean, 37.25);
+  EXPECT_EQ(back.stop_reason, "noise_target");
+  JobDetail d;
+  d.frames = {f, FrameInfo{5, FrameState::Pending, 1, 0, "", "", std::nullopt, std::nullopt, ""}};
+  const json dj = d;
+  EXPECT_FALSE(dj.at("frames").at(1).contains("noise_reached"));
+  const JobDetail db = round_trip(d);
+  ASSERT_EQ(db.frames.size(), 2u);
+  EXPECT_EQ(db.frames[0].spp_mean, 37.25);
+  EXPECT_FALSE(db.frames[1].spp_mean);
+  // An older server's answer has no frames: read as none.
+  json older = d;
+  older.erase("frames");
+  EXPECT_TRUE(older.get<JobDetail>().frames.empty());
+}
+
 TEST(JobMessagesTest, JobDetailIsTheSummaryWithTasks) {
   JobDetail d;
   d.summary = {1, "n", 50, "active", {1, 1, 0, 0, 0, 0}, 2, false};
@@ -113,7 +177,8 @@ TEST(JobMessagesTest, JobDetailIsTheSummaryWithTasks) {
 }
 
 TEST(JobMessagesTest, FramesWorkersActionsBlobsAndErrors) {
-  FrameList frames{{{1, FrameState::Ready, 1, 1, "B", ""}, {2, FrameState::Failed, 2, 1, "", "x"}}};
+  FrameList frames{{{1, FrameState::Ready, 1, 1, "B", "", std::nullopt, std::nullopt, ""},
+                    {2, FrameState::Failed, 2, 1, "", "x", std::nullopt, std::nullopt, ""}}};
   EXPECT_EQ(json(frames), json::parse(R"({"frames": [
       {"frame": 1, "state": "ready", "tasks": 1, "done": 1, "blob": "B"},
       {"frame": 2, "state": "failed", "tasks": 2, "done": 1, "error": "x"}]})"));

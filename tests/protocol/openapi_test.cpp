@@ -7,12 +7,15 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "protocol/job_messages.h"
 #include "protocol/routes.h"
+#include "protocol/worker_messages.h"
 
 namespace vesper::protocol {
 namespace {
@@ -147,6 +150,59 @@ TEST(OpenApiTest, HeadRoutesHaveAGetRouteOfTheSamePath) {
                         g.endpoint == h.endpoint && g.role == h.role);
     EXPECT_TRUE(found) << full_path(h);
   }
+}
+
+// The property names of components/schemas/<name> (for an allOf, those of
+// its inline parts; `also` adds a referenced schema's).
+std::set<std::string> properties(const KeyTree& doc, const std::string& name,
+                                 const std::string& also = "") {
+  std::set<std::string> out;
+  const KeyTree* schemas =
+      doc.child("components") ? doc.child("components")->child("schemas") : nullptr;
+  const KeyTree* schema = schemas ? schemas->child(name) : nullptr;
+  if (!schema) return out;
+  if (const KeyTree* all = schema->child("allOf")) schema = all;
+  if (const KeyTree* props = schema->child("properties"))
+    for (const auto& [key, value] : props->children) out.insert(key);
+  if (!also.empty())
+    for (const std::string& key : properties(doc, also)) out.insert(key);
+  return out;
+}
+
+std::set<std::string> keys_of(const nlohmann::json& j) {
+  std::set<std::string> out;
+  for (const auto& [key, value] : j.items()) out.insert(key);
+  return out;
+}
+
+// Every message with every optional field set writes exactly the properties
+// its schema documents: a field added to a message and not to openapi.yaml
+// (or the other way round) fails here.
+TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
+  const KeyTree doc = load_openapi();
+  SubmitRequest submit;
+  submit.assets = {{"a.obj", "B"}};
+  submit.noise_target = 0.01;
+  submit.min_spp = submit.max_spp = 8;
+  submit.time_limit = 60;
+  EXPECT_EQ(keys_of(nlohmann::json(submit)), properties(doc, "SubmitRequest"));
+
+  LeaseResponse lease;
+  lease.noise_target = 0.02;
+  lease.min_spp = 8;
+  lease.time_limit = 30;
+  EXPECT_EQ(keys_of(nlohmann::json(lease)), properties(doc, "LeaseResponse"));
+  EXPECT_EQ(keys_of(nlohmann::json(lease.task)), properties(doc, "LeasedTask"));
+
+  const FrameInfo frame{1, FrameState::Ready, 1, 1, "B", "e", 0.01, 40.5, "noise_target"};
+  EXPECT_EQ(keys_of(nlohmann::json(frame)), properties(doc, "Frame"));
+  const TaskInfo task{1, 1, 1, 0, 8, "done", 1, "w", "R", true, 0.5, 2};
+  EXPECT_EQ(keys_of(nlohmann::json(task)), properties(doc, "Task"));
+  JobDetail detail;
+  detail.tasks = {task};
+  detail.frames = {frame};
+  EXPECT_EQ(keys_of(nlohmann::json(detail)), properties(doc, "JobDetail", "JobSummary"));
+  EXPECT_EQ(keys_of(nlohmann::json(detail.summary)), properties(doc, "JobSummary"));
 }
 
 TEST(OpenApiTest, TheKeyReaderFollowsIndentationListsAndBlockScalars) {

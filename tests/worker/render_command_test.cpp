@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 namespace vesper::worker_detail {
 namespace {
@@ -45,6 +47,30 @@ TEST(RenderCommand, FollowsTheTaskAndTheWorkerConfig) {
     EXPECT_EQ(render_output_extension(c.lease), c.extension);
     EXPECT_EQ(command_line(render_command(c.lease, config(c.threads), "s.json", "out")), c.argv);
   }
+}
+
+// The lease's budget (this task's share of its frame's) goes on as the
+// render's flags, each number as the shortest text that reads back exactly.
+TEST(RenderCommand, PassesTheTasksBudget) {
+  protocol::LeaseResponse split = lease(2, 256, 64, 128);
+  split.noise_target = 0.01 * std::sqrt(4.0);
+  split.min_spp = 16;
+  split.time_limit = 7.5;
+  EXPECT_EQ(command_line(render_command(split, config(0), "s.json", "out")),
+            "/opt/vesper/bin/vesper render s.json -o out --spp 256 --sample-begin 64 "
+            "--sample-end 128 --frame 2 --partial --noise-target 0.02 --max-spp 256 "
+            "--min-spp 16 --time-limit 7.5");
+  protocol::LeaseResponse whole = lease(1, 64, 0, 64);
+  whole.noise_target = 0.1 / std::sqrt(0.36);  // not a short decimal
+  const auto argv = render_command(whole, config(0), "s.json", "out.exr");
+  const auto at = std::find(argv.begin(), argv.end(), "--noise-target");
+  ASSERT_NE(at, argv.end());
+  EXPECT_EQ(std::stod(*(at + 1)), *whole.noise_target);  // exact round trip
+  EXPECT_EQ(std::count(argv.begin(), argv.end(), "--min-spp"), 0);
+  EXPECT_EQ(std::count(argv.begin(), argv.end(), "--time-limit"), 0);
+  EXPECT_EQ(render_output_extension(whole), ".exr");
+  EXPECT_EQ(describe_budget(split), ", noise target 0.02 (min spp 16), time limit 7.5 s");
+  EXPECT_EQ(describe_budget(lease(1, 4, 0, 4)), "");
 }
 
 TEST(RenderCommand, LeavesTheSeedToTheSceneAndTheProgressLinesOn) {

@@ -21,6 +21,7 @@
 
 #include "common/sha256.h"
 #include "server/server.h"
+#include "tests/common/http_blob.h"
 #include "tests/common/temp_dir.h"
 #include "worker/worker.h"
 
@@ -108,13 +109,7 @@ class WorkerTest : public ::testing::Test {
   httplib::Headers wrk() const { return {{"Authorization", "Bearer " + server_->worker_token()}}; }
 
   std::string put_blob(const std::string& bytes) {
-    const std::string h = sha256_hex(bytes);
-    auto r = client().Put(("/api/v1/blobs/" + h).c_str(), sub(), bytes, "application/octet-stream");
-    EXPECT_TRUE(r);
-    if (r) {
-      EXPECT_TRUE(r->status == 200 || r->status == 201) << r->body;
-    }
-    return h;
+    return test::upload_blob(client(), sub(), bytes);
   }
   std::string get_blob(const std::string& h) {
     auto r = client().Get(("/api/v1/blobs/" + h).c_str(), sub());
