@@ -21,6 +21,7 @@
 #include "regress/report_html.h"
 #include "regress/report_json.h"
 #include "regress/suite.h"
+#include "regress/verdicts.h"
 
 namespace vesper::cli {
 namespace {
@@ -35,8 +36,6 @@ std::string utc_now() {
   return buf;
 }
 
-Verdict worse(Verdict a, Verdict b) { return int(a) > int(b) ? a : b; }
-
 // One scene and frame: render, then write the golden or compare with it.
 regress::SceneResult regress_frame(const regress::SuiteScene& scene, int frame,
                                    const std::string& label, const RegressCommandOptions& o,
@@ -47,9 +46,7 @@ regress::SceneResult regress_frame(const regress::SuiteScene& scene, int frame,
   regress::SceneResult result;
   result.name = label;
   if (!render.error.empty()) {
-    result.verdict = Verdict::Error;
-    result.reasons.push_back(render.error);
-    return result;
+    return regress::error_result(label, render.error);
   }
   if (o.update_goldens) {
     write_golden(render, goldens);
@@ -136,12 +133,8 @@ int write_outputs(const regress::RunResult& run, const RegressCommandOptions& o,
     if (o.report) {
       fs::create_directories(*o.report);
       regress::write_report_json(run, fs::path(*o.report) / "report.json");
-      std::vector<regress::TrendPoint> trends;
-      if (history)
-        for (const auto& s : run.scenes) {
-          auto t = history->trend(s.name, 30);
-          trends.insert(trends.end(), t.begin(), t.end());
-        }
+      const std::vector<regress::TrendPoint> trends =
+          history ? history->recent_trends(60) : std::vector<regress::TrendPoint>{};
       regress::write_report_html(run, history ? &trends : nullptr, *o.report);
       if (!o.quiet) spdlog::info("report: {}", (fs::path(*o.report) / "index.html").string());
     }
@@ -186,11 +179,11 @@ int run_regress(const RegressCommandOptions& o) {
     if (!o.quiet) progress.update(i, frames.size());
     const SuiteFrame& f = frames[i];
     regress::SceneResult r = regress_frame(*f.scene, f.frame, f.label, o, settings, history.get());
-    run.verdict = worse(run.verdict, r.verdict);
     run.scenes.push_back(std::move(r));
   }
   if (!o.quiet) progress.update(frames.size(), frames.size());
   progress.finish();
+  regress::summarize_run(run);
   for (const auto& s : run.scenes) print_result(s);
   const int written = write_outputs(run, o, history.get());
   if (!keep) fs::remove_all(settings.out_dir);

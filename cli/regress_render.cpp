@@ -37,6 +37,11 @@ std::vector<std::string> render_argv(const regress::SuiteScene& scene, int frame
     std::snprintf(target, sizeof target, "%.17g", *scene.noise_target);
     argv.insert(argv.end(), {"--noise-target", target});
   }
+  if (scene.scale) {
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%.17g", *scene.scale);
+    argv.insert(argv.end(), {"--scale", scale});
+  }
   if (s.seed) argv.insert(argv.end(), {"--seed", std::to_string(*s.seed)});
   if (s.threads) argv.insert(argv.end(), {"--threads", std::to_string(*s.threads)});
   return argv;

@@ -85,7 +85,8 @@ std::vector<std::string> parse_layers(JsonReader node) {
 SuiteScene parse_scene(JsonReader node, const std::filesystem::path& base,
                        const Thresholds& defaults) {
   node.expect_object();
-  node.allow_keys({"name", "scene", "spp", "noise_target", "frames", "layers", "thresholds"});
+  node.allow_keys(
+      {"name", "scene", "spp", "noise_target", "frames", "layers", "scale", "thresholds"});
   SuiteScene scene;
   scene.name = parse_name(node);
   scene.scene = parse_scene_path(node, base);
@@ -100,6 +101,7 @@ SuiteScene parse_scene(JsonReader node, const std::filesystem::path& base,
     }
   }
   if (const auto layers = node.optional_child("layers")) scene.layers = parse_layers(*layers);
+  if (node.has("scale")) scene.scale = node.number("scale", Range::left_open(0, 4));
   scene.thresholds = defaults;
   if (const auto t = node.optional_child("thresholds"))
     scene.thresholds = parse_thresholds(*t, defaults);

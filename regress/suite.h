@@ -29,6 +29,7 @@ struct SuiteScene {
   std::optional<double> noise_target;
   std::string frames = "1";                        // frame list as `vesper up --frames` takes it
   std::optional<std::vector<std::string>> layers;  // default: every layer in the EXR
+  std::optional<double> scale;  // film size factor (vesper render --scale), in (0, 4]
   Thresholds thresholds;
 };
 
