@@ -1,5 +1,6 @@
 #include "cli/regress_render.h"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -9,7 +10,6 @@
 #include "compositor/histogram.h"
 #include "compositor/layer_mix.h"
 #include "process/child_process.h"
-#include "regress/median.h"
 #include "renderer/output/exr_io.h"
 #include "renderer/output/metadata_keys.h"
 
@@ -91,13 +91,15 @@ void write_golden(const SuiteRender& render, const fs::path& dir) {
   };
   const Histogram histogram =
       log2_histogram(extract_layer(image, "beauty", render.exr.string()), LumaWeights::Rec709);
-  nlohmann::json sidecar{{"format", "vesper-golden/1"},
-                         {"renderer_version", meta(metadata_key::kRendererVersion)},
-                         {"scene_hash", meta(metadata_key::kSceneHash)},
-                         {"spp", meta(metadata_key::kSpp)},
-                         {"seconds", regress::median(render.seconds)},
-                         {"seconds_repeats", render.seconds},
-                         {"histogram", histogram_to_json(histogram)}};
+  nlohmann::json sidecar{
+      {"format", "vesper-golden/1"},
+      {"renderer_version", meta(metadata_key::kRendererVersion)},
+      {"scene_hash", meta(metadata_key::kSceneHash)},
+      {"spp", meta(metadata_key::kSpp)},
+      // The fastest repeat: the timing check compares fastest with fastest.
+      {"seconds", *std::min_element(render.seconds.begin(), render.seconds.end())},
+      {"seconds_repeats", render.seconds},
+      {"histogram", histogram_to_json(histogram)}};
   std::error_code ec;
   fs::rename(render.exr, golden_image(dir, render.label), ec);
   if (ec) {  // another file system: copy, then rename into place

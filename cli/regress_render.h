@@ -41,7 +41,8 @@ std::filesystem::path golden_sidecar(const std::filesystem::path& dir, const std
 // rename. Throws std::runtime_error naming the file on failure.
 void write_golden(const SuiteRender& render, const std::filesystem::path& dir);
 
-// The golden's median render time from its sidecar; nullopt if it has none.
+// The golden's render time (the fastest of its repeats) from its sidecar;
+// nullopt if it has none.
 std::optional<double> golden_seconds(const std::filesystem::path& dir, const std::string& label);
 
 }  // namespace vesper::cli

@@ -9,7 +9,7 @@ rm -rf "$work" && mkdir -p "$work"
 cd "$source"
 [ -f scenes/cloud/cloud.vdb ] || "$vesper" vdb cloud -o scenes/cloud/cloud.vdb -q
 suite=scenes/regression/suite.json
-"$vesper" regress "$suite" --goldens "$work/goldens" --update-goldens --seed 1 --repeats 1 -q
+"$vesper" regress "$suite" --goldens "$work/goldens" --update-goldens --seed 1 --repeats 3 -q
 status=0
 "$vesper" regress "$suite" --goldens "$work/goldens" --seed 2 --repeats 3 \
   --report "$work/report" --history "$work/history.db" || status=$?
