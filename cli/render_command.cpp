@@ -15,7 +15,7 @@
 #include "renderer/output/metadata_keys.h"
 #include "renderer/output/partial_io.h"
 #include "renderer/render/frame.h"
-#include "renderer/sampling/sampler.h"
+#include "renderer/sampling/random_hash.h"
 #include "renderer/scene/aov_names.h"
 #include "renderer/scene/scene_loader.h"
 

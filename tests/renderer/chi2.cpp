@@ -62,6 +62,10 @@ std::string describe(const Cell& c, const Chi2Options& o) {
 
 }  // namespace
 
+double chi2_p_value(double statistic, int dof) {
+  return dof > 0 ? boost::math::gamma_q(0.5 * dof, 0.5 * statistic) : 1.0;
+}
+
 double sidak_alpha(double alpha, int m) { return 1.0 - std::pow(1.0 - alpha, 1.0 / m); }
 
 Chi2Result chi2_test(const std::function<std::optional<Vec3>()>& sample,
@@ -153,7 +157,7 @@ Chi2Result chi2_test(const std::function<std::optional<Vec3>()>& sample,
   dof -= 1;  // the counts sum to the number of attempts
   r.statistic = chi2;
   r.dof = dof;
-  r.p_value = dof > 0 ? boost::math::gamma_q(0.5 * dof, 0.5 * chi2) : 1.0;
+  r.p_value = chi2_p_value(chi2, dof);
   msg << "chi2 " << chi2 << " dof " << dof << " p " << r.p_value << " pdf integral " << integral
       << " sampled " << r.sampled_fraction << "; worst:";
   for (size_t i = 0; i < std::min<size_t>(4, by_error.size()); ++i)

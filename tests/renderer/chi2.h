@@ -45,6 +45,9 @@ Chi2Result chi2_test(const std::function<std::optional<Vec3>()>& sample,
                      const std::function<double(const Vec3&)>& pdf,
                      const Chi2Options& options = {});
 
+// P(X >= statistic) for X chi-square distributed with `dof` degrees of freedom.
+double chi2_p_value(double statistic, int dof);
+
 // Per-test level so that m independent tests together reject with `alpha` (Sidak).
 double sidak_alpha(double alpha, int m);
 
