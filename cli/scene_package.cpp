@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "common/json_parse.h"
 #include "common/sha256.h"
 
 namespace vesper::cli {
@@ -51,10 +52,7 @@ struct Packer {
 }  // namespace
 
 PackedScene pack_scene(const std::filesystem::path& scene_file) {
-  std::ifstream in(scene_file);
-  if (!in) throw std::runtime_error(scene_file.string() + ": cannot read");
-  nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  if (doc.is_discarded()) throw std::runtime_error(scene_file.string() + ": not valid JSON");
+  nlohmann::json doc = read_json_file(scene_file, "the scene file");
   Packer p{std::filesystem::absolute(scene_file).parent_path(), scene_file.string(), {}};
   p.walk(doc, "");
   PackedScene out;

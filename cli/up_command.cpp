@@ -18,6 +18,7 @@
 #include "cli/job_watch.h"
 #include "cli/parent_watch.h"
 #include "cli/submit.h"
+#include "common/json_parse.h"
 #include "compositor/comp_run.h"
 #include "compositor/recipe.h"
 #include "jobs/frame_range.h"
@@ -53,10 +54,9 @@ std::filesystem::path find_demo_scene() {
 // Rewrites a composite recipe to read the fetched frames and write beside them.
 CompRecipe recipe_for_frames(const std::filesystem::path& recipe_file, const FetchedFrames& frames,
                              const std::filesystem::path& out_dir, const std::string& name) {
-  std::ifstream in(recipe_file);
-  nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  if (doc.is_discarded() || !doc.is_object() || !doc.contains("inputs") ||
-      !doc["inputs"].is_object() || doc["inputs"].size() != 1)
+  nlohmann::json doc = read_json_file(recipe_file, "the composite recipe");
+  if (!doc.is_object() || !doc.contains("inputs") || !doc["inputs"].is_object() ||
+      doc["inputs"].size() != 1)
     throw std::runtime_error(recipe_file.string() +
                              ": /inputs: `vesper up` composites recipes with exactly one input");
   const bool sequence = frames.written.size() > 1;

@@ -9,6 +9,7 @@
 
 #include "common/secret_token.h"
 #include "common/sha256.h"
+#include "common/utf8.h"
 #include "server/api_error.h"
 
 namespace fs = std::filesystem;
@@ -28,7 +29,7 @@ BlobStore::BlobStore(fs::path root) : root_(std::move(root)) {
 
 fs::path BlobStore::path_of(const std::string& hash) const {
   if (!is_sha256_hex(hash))
-    throw ApiError(400, "malformed blob name '" + hash.substr(0, 80) +
+    throw ApiError(400, "malformed blob name '" + utf8_safe(hash, 80) +
                             "': expected a SHA-256 as 64 lower-case hex digits");
   return root_ / hash.substr(0, 2) / hash.substr(2);
 }

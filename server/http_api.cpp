@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "common/secret_token.h"
+#include "common/utf8.h"
 #include "protocol/error_body.h"
 #include "server/api_error.h"
 #include "server/metrics.h"
@@ -23,11 +24,14 @@ namespace {
 
 using protocol::Role;
 
+// Messages may quote what the client sent (a path segment, a name): made
+// valid UTF-8 first, or the JSON dump would throw and the answer be a 500.
 void send_error(httplib::Response& res, int status, const std::string& message,
                 const std::string& path = {}) {
   res.status = status;
-  res.set_content(nlohmann::json(protocol::ErrorBody{message, path}).dump() + "\n",
-                  "application/json");
+  res.set_content(
+      nlohmann::json(protocol::ErrorBody{utf8_safe(message), utf8_safe(path)}).dump() + "\n",
+      "application/json");
 }
 
 // Streams a file as the response body.

@@ -7,6 +7,7 @@
 #include "common/json_parse.h"
 #include "common/json_reader.h"
 #include "common/sha256.h"
+#include "common/utf8.h"
 #include "jobs/frame_range.h"
 #include "protocol/fields.h"
 #include "server/api_error.h"
@@ -56,7 +57,7 @@ std::string sha256_at(JsonReader& o, std::string_view key, const std::string& wh
 
 // Control characters of a name shown in a message become '?'.
 std::string shown(const std::string& name) {
-  std::string s = name.substr(0, 80);
+  std::string s = utf8_safe(name, 80);
   for (char& c : s)
     if (static_cast<unsigned char>(c) < 0x20) c = '?';
   return s;
@@ -92,7 +93,7 @@ std::vector<Asset> read_assets(const JsonReader& assets) {
   // A name cannot be a file and a directory at once ("a" and "a/b").
   for (size_t i = 0; i < out.size(); ++i)
     if (dirs.count(out[i].name))
-      assets.element(i).fail_key(f::kName, "asset name '" + out[i].name.substr(0, 80) +
+      assets.element(i).fail_key(f::kName, "asset name '" + shown(out[i].name) +
                                                "' is also the directory of another asset");
   return out;
 }

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/utf8.h"
 #include "protocol/fields.h"
 #include "protocol/job_messages.h"
 #include "protocol/worker_messages.h"
@@ -27,7 +28,7 @@ constexpr size_t kMaxLogTail = 64 * 1024;
 
 [[noreturn]] void stale(const std::string& lease_id) {
   throw ApiError(409,
-                 "stale lease '" + lease_id.substr(0, 80) +
+                 "stale lease '" + utf8_safe(lease_id, 80) +
                      "': it expired, was re-leased, or its task was canceled; drop the task",
                  std::string("/") + f::kLeaseId);
 }
@@ -55,7 +56,7 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
   const double t = d.clock.now();
   if (!d.workers.touch(r.worker_id, t))
     throw ApiError(404,
-                   "unknown worker '" + r.worker_id.substr(0, 80) + "': register first (POST " +
+                   "unknown worker '" + utf8_safe(r.worker_id, 80) + "': register first (POST " +
                        protocol::api(protocol::paths::kWorkerRegister) + ")",
                    std::string("/") + f::kWorkerId);
   int reused = 0;
@@ -123,7 +124,7 @@ ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
 
 ApiResponse fail(const WorkerHandlerDeps& d, const ApiRequest& req) {
   auto r = read_fail_request(req.body);
-  if (r.log.size() > kMaxLogTail) r.log = r.log.substr(r.log.size() - kMaxLogTail);
+  r.log = utf8_tail(r.log, kMaxLogTail);
   const double t = d.clock.now();
   const bool failed = d.store.with([&](JobStore& s) { return s.fail(r.lease_id, r.log, t); });
   d.leases.note(r.lease_id, t, true);

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "common/sha256.h"
+#include "common/utf8.h"
 #include "protocol/worker_messages.h"
 #include "worker/backoff.h"
 #include "worker/blob_cache.h"
@@ -34,11 +35,6 @@ std::string hostname() {
   char buf[256] = {0};
   if (::gethostname(buf, sizeof buf - 1) != 0 || !buf[0]) return "worker";
   return buf;
-}
-
-std::string tail_of(std::string s, size_t n) {
-  if (s.size() > n) s.erase(0, s.size() - n);
-  return s;
 }
 
 // Unique per Worker (pid + random), so that several workers (threads or
@@ -329,7 +325,7 @@ void Worker::Impl::upload_and_complete(const protocol::LeaseResponse& l, const f
 }
 
 void Worker::Impl::fail(const protocol::LeaseResponse& l, const std::string& log) {
-  const HttpResponse f = api->fail({l.lease_id, tail_of(log, kLogTail)});
+  const HttpResponse f = api->fail({l.lease_id, utf8_tail(log, kLogTail)});
   if (f.status == 409)
     spdlog::info("task {}: fail refused, lease is stale", l.task.id);
   else if (!f.ok())
