@@ -25,7 +25,7 @@ struct Asset {
 // Why `name` is not an acceptable asset name, or empty when it is: a
 // non-empty relative path of at most kMaxAssetNameLength bytes, made of
 // '/'-separated segments that are neither empty, "." nor ".."; no backslash,
-// no NUL, not absolute. Checked by the server on submit and again by the
+// no control character (NUL, ESC, newline, ...), not absolute. Checked by the server on submit and again by the
 // worker before a name becomes a path.
 constexpr size_t kMaxAssetNameLength = 255;
 std::string asset_name_problem(std::string_view name);

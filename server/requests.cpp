@@ -4,6 +4,7 @@
 #include <climits>
 #include <set>
 
+#include "common/control_characters.h"
 #include "common/json_parse.h"
 #include "common/json_reader.h"
 #include "common/sha256.h"
@@ -55,12 +56,26 @@ std::string sha256_at(JsonReader& o, std::string_view key, const std::string& wh
   return v.json().get<std::string>();
 }
 
-// Control characters of a name shown in a message become '?'.
+// A name quoted in a message: at most 80 bytes, control characters escaped.
 std::string shown(const std::string& name) {
-  std::string s = utf8_safe(name, 80);
-  for (char& c : s)
-    if (static_cast<unsigned char>(c) < 0x20) c = '?';
-  return s;
+  return escape_control_characters(utf8_safe(name, 80));
+}
+
+// A name people will read on terminals and in file names (a job's, a
+// worker's): `max_bytes` at most, no control characters.
+std::string read_name(JsonReader& o, std::string_view key, size_t max_bytes,
+                      const std::string& fallback = {}) {
+  const auto node = o.optional_child(key);
+  if (!node) {
+    if (fallback.empty()) o.fail_key(key, "missing required key '" + std::string(key) + "'");
+    return fallback;
+  }
+  const std::string name = node->as_string(/*allow_empty=*/!fallback.empty());
+  if (name.size() > max_bytes)
+    o.fail_key(key, "name longer than " + std::to_string(max_bytes) + " characters");
+  if (const std::string why = control_character_problem(name); !why.empty())
+    o.fail_key(key, "name '" + shown(name) + "' " + why);
+  return name;
 }
 
 Asset read_asset(JsonReader a, std::set<std::string>& names, std::set<std::string>& dirs) {
@@ -126,9 +141,7 @@ JobSpec read_job(JsonReader& o) {
                 f::kMaxAttempts, f::kAssets, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
                 f::kTimeLimit});
   JobSpec spec;
-  const auto name = o.optional_child(f::kName);
-  spec.name = name ? name->as_string(/*allow_empty=*/true) : "job";
-  if (spec.name.size() > 256) o.fail_key(f::kName, "name longer than 256 characters");
+  spec.name = read_name(o, f::kName, 256, "job");
   spec.scene = sha256_at(o, f::kScene, "an uploaded scene blob");
   spec.frames = read_frames(required(o, f::kFrames));
   spec.spp = int(o.integer(f::kSpp, spec.spp, 1, kMaxFrameSpp));
@@ -173,9 +186,7 @@ JobSpec read_job_request(const std::string& body) { return read_body(body, read_
 protocol::RegisterRequest read_register_request(const std::string& body) {
   return read_body(body, [](JsonReader& o) {
     o.allow_keys({f::kName});
-    protocol::RegisterRequest r{required(o, f::kName).as_string()};
-    if (r.name.size() > 128) o.fail_key(f::kName, "name longer than 128 characters");
-    return r;
+    return protocol::RegisterRequest{read_name(o, f::kName, 128)};
   });
 }
 

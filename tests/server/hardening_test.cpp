@@ -78,5 +78,38 @@ TEST_F(HardeningTest, QuotedValuesAreCutAtCharacterBoundaries) {
   EXPECT_TRUE(is_valid_utf8(r->body)) << r->body;
 }
 
+// Names end up on terminals and in file names: control characters are
+// refused where they enter, naming the field.
+TEST_F(HardeningTest, ControlCharactersInNamesAre400NamingTheField) {
+  start();
+  const std::string scene = put_blob("{\"format\": \"vesper-scene/1\"}");
+  const std::string asset = put_blob("v 0 0 0\n");
+  for (const std::string& bad : {std::string("a\x1b[31mred"), std::string("two\nlines"),
+                                 std::string("cr\rx"), std::string("nul\0x", 5),
+                                 std::string("c1\xc2\x9b")}) {
+    auto [status, error] = post_raw("/workers/register", json{{"name", bad}}.dump(), wrk());
+    EXPECT_EQ(status, 400);
+    EXPECT_EQ(error.value("path", ""), "/name") << error.dump();
+    EXPECT_NE(error.value("error", "").find("control character"), std::string::npos)
+        << error.dump();
+    std::tie(status, error) =
+        post_raw("/jobs", json{{"name", bad}, {"scene", scene}, {"frames", "1"}}.dump(), sub());
+    EXPECT_EQ(status, 400);
+    EXPECT_EQ(error.value("path", ""), "/name") << error.dump();
+    const json assets = json::array({{{"name", "assets/" + bad}, {"blob", asset}}});
+    std::tie(status, error) =
+        post_raw("/jobs", json{{"scene", scene}, {"frames", "1"}, {"assets", assets}}.dump(), sub());
+    EXPECT_EQ(status, 400);
+    EXPECT_EQ(error.value("path", ""), "/assets/0/name") << error.dump();
+    // The message shows the name escaped, never the raw control character.
+    EXPECT_EQ(error.value("error", "").find_first_of(std::string("\x1b\n\r\0", 4)),
+              std::string::npos)
+        << error.dump();
+  }
+  // Printable Unicode is a name like any other.
+  EXPECT_EQ(post_raw("/workers/register", json{{"name", "rendu-été 渲染"}}.dump(), wrk()).first,
+            200);
+}
+
 }  // namespace
 }  // namespace vesper

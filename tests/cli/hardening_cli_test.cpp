@@ -1,0 +1,80 @@
+// Farm hardening end to end (docs/farm.md, "Hardening"): real `vesper server`
+// and `vesper worker` processes on 127.0.0.1 against hostile names, scenes
+// and renders, and an unlucky operator restarting the server mid-upload.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "jobs/job_store.h"
+#include "tests/cli/farm_test_fixture.h"
+
+namespace vesper::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Every file under `dir`, recursively, relative to it.
+std::vector<std::string> files_under(const fs::path& dir) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::end(it); ++it)
+    if (!it->is_directory()) out.push_back(fs::relative(it->path(), dir).string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Job names become file names in `vesper fetch`: nothing is written outside
+// -o whatever the name. Names printed by `status` and `workers` have their
+// control characters escaped (here from a store written by an older server
+// that did not refuse them).
+TEST_F(FarmTest, JobNamesStayInsideTheFetchFolderAndNamesAreEscaped) {
+  const auto config = write_config(10);
+  const auto scene = write_scene(16, 12, 1);
+  fs::create_directories(dir_ / "data");
+  {
+    JobStore old(dir_ / "data" / "jobs.sqlite");
+    JobSpec spec;
+    spec.name = "evil\x1b[31m\nname";
+    spec.scene = std::string(64, 'a');
+    spec.frames = {1};
+    old.pause(old.submit(spec, 0));
+  }
+  std::ofstream(dir_ / "data" / "workers.json")
+      << R"({"workers": [{"worker_id": "0123", "name": "w\u001b[2J\r", "registered": 1,)"
+      << R"( "last_seen": 1}]})";
+  start_server(config);
+  start_worker("w1", config);
+  const fs::path outside = dir_ / "abs" / "dir";
+  fs::create_directories(outside);
+  const std::vector<std::string> names = {"../../escaped", (outside / "x").string(), "..", "a####"};
+  for (const std::string& name : names) {
+    const long long id = submit(fmt::format("{} --frames 1 --name '{}'", scene.string(), name));
+    ASSERT_GT(id, 0) << name;
+    ASSERT_EQ(wait_finished(id, 120).at("counts").at("done"), 1) << name;
+    const fs::path out = dir_ / "out" / std::to_string(id);
+    const RunResult f = farm(fmt::format("fetch {} -o {}", id, out.string()));
+    EXPECT_EQ(f.exit_code, 0) << f.err;
+    const auto files = files_under(out);
+    ASSERT_EQ(files.size(), 1u) << name;
+    EXPECT_EQ(files[0].find('/'), std::string::npos) << files[0];
+    EXPECT_NE(files[0].rfind(".0001.exr"), std::string::npos) << files[0];
+    EXPECT_NE(files[0][0], '.') << files[0];
+  }
+  EXPECT_TRUE(files_under(outside).empty());
+  EXPECT_FALSE(fs::exists(dir_ / "escaped.0001.exr"));
+  EXPECT_EQ(files_under(dir_ / "out").size(), names.size());
+
+  const RunResult all = farm("status");
+  EXPECT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_NE(all.out.find("evil\\x1b[31m\\nname"), std::string::npos) << all.out;
+  const RunResult w = farm("workers");
+  EXPECT_EQ(w.exit_code, 0) << w.err;
+  EXPECT_NE(w.out.find("w\\x1b[2J\\r"), std::string::npos) << w.out;
+  for (const RunResult& r : {all, w, farm("status 1")}) {
+    EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find('\r'), std::string::npos) << r.out;
+  }
+}
+
+}  // namespace
+}  // namespace vesper::test
