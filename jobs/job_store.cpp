@@ -62,6 +62,9 @@ JobStore::JobStore(const std::filesystem::path& file, StoreOptions options)
   db.exec("PRAGMA journal_mode = WAL");
   db.exec("PRAGMA synchronous = FULL");  // a committed state change survives power loss
   db.exec("PRAGMA foreign_keys = ON");
+  // Temporary tables and sort spills in memory: SQLite would otherwise write
+  // them to /var/tmp, outside the (private) data dir.
+  db.exec("PRAGMA temp_store = MEMORY");
   sql::Transaction tx(db);
   migrate_schema(db, file.string());
   tx.commit();

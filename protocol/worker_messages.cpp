@@ -9,7 +9,8 @@ namespace f = field;
 using detail::optional;
 using detail::required;
 
-VESPER_JSON_FIELDS(RegisterRequest, required(f::kName, &RegisterRequest::name))
+VESPER_JSON_FIELDS(RegisterRequest, required(f::kName, &RegisterRequest::name),
+                   optional(f::kWorkerId, &RegisterRequest::worker_id))
 VESPER_JSON_FIELDS(RegisterResponse, required(f::kWorkerId, &RegisterResponse::worker_id))
 VESPER_JSON_FIELDS(AssetRef, required(f::kName, &AssetRef::name),
                    required(f::kBlob, &AssetRef::blob))

@@ -15,7 +15,11 @@ namespace vesper::protocol {
 
 // POST /workers/register
 struct RegisterRequest {
-  std::string name;  // at most 128 characters
+  std::string name;  // at most 128 characters, no control characters
+  // The id this worker had before (a restart): kept when the server knows it,
+  // so a restarted worker is the same worker (its blocklist entries, one
+  // line in workers.json) instead of a new one. Empty: a new id.
+  std::string worker_id;
 };
 struct RegisterResponse {
   std::string worker_id;

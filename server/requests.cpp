@@ -185,8 +185,10 @@ JobSpec read_job_request(const std::string& body) { return read_body(body, read_
 
 protocol::RegisterRequest read_register_request(const std::string& body) {
   return read_body(body, [](JsonReader& o) {
-    o.allow_keys({f::kName});
-    return protocol::RegisterRequest{read_name(o, f::kName, 128)};
+    o.allow_keys({f::kName, f::kWorkerId});
+    protocol::RegisterRequest r{read_name(o, f::kName, 128), optional_string(o, f::kWorkerId)};
+    if (r.worker_id.size() > 64) o.fail_key(f::kWorkerId, "expected a worker id this server gave");
+    return r;
   });
 }
 

@@ -9,6 +9,7 @@
 
 #include "jobs/job_store.h"
 #include "server/blob_store.h"
+#include "server/data_dir.h"
 #include "server/frame_merger.h"
 #include "server/handlers.h"
 #include "server/http_api.h"
@@ -26,10 +27,7 @@ namespace {
 
 ServerConfig prepare(ServerConfig c) {
   if (c.data_dir.empty()) throw std::invalid_argument("server: data_dir is empty");
-  if (!fs::exists(c.data_dir)) {
-    fs::create_directories(c.data_dir);
-    fs::permissions(c.data_dir, fs::perms::owner_all, fs::perm_options::replace);
-  }
+  make_data_dir_private(c.data_dir);
   if (c.lease_seconds <= 0) throw std::invalid_argument("server: lease_seconds must be positive");
   if (c.threads < 1) c.threads = 1;
   return c;

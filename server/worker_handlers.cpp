@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/control_characters.h"
 #include "common/utf8.h"
 #include "protocol/fields.h"
 #include "protocol/job_messages.h"
@@ -37,8 +38,9 @@ ApiResponse ok() { return json_response(200, protocol::OkResponse{}); }
 
 ApiResponse register_worker(const WorkerHandlerDeps& d, const ApiRequest& req) {
   const auto r = read_register_request(req.body);
-  const std::string id = d.workers.add(r.name, d.clock.now());
-  spdlog::info("worker '{}' registered as {}", r.name, id);
+  const std::string id = d.workers.add(r.name, d.clock.now(), r.worker_id);
+  spdlog::info("worker '{}' {} as {}", escape_control_characters(r.name),
+               id == r.worker_id ? "registered again" : "registered", id);
   return json_response(200, protocol::RegisterResponse{id});
 }
 

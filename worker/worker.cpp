@@ -19,6 +19,7 @@
 #include "worker/task_dir.h"
 #include "worker/task_runner.h"
 #include "worker/uploader.h"
+#include "worker/worker_identity.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -57,6 +58,7 @@ struct Worker::Impl {
   WorkerConfig cfg;
   std::unique_ptr<ServerApi> api;
   std::unique_ptr<BlobCache> cache;
+  std::unique_ptr<WorkerIdentity> identity;  // the id kept across restarts
   Backoff backoff;
   mutable std::mutex id_mutex;
   std::string worker_id;
@@ -138,15 +140,19 @@ bool Worker::Impl::start() {
   }
   api = std::make_unique<ServerApi>(cfg.server_url, cfg.token);
   cache = std::make_unique<BlobCache>(*api, cfg.cache_dir);
+  identity = std::make_unique<WorkerIdentity>(cfg.cache_dir);
   return true;
 }
 
-// Register (again, if the server forgot us): a transport error or 5xx is
-// retried with back-off (the server may be restarting); 400/401 is fatal.
+// Register (again, if the server forgot us), with the id this worker had
+// (before a restart: kept in the cache dir), so the server keeps it: a
+// transport error or 5xx is retried with back-off (the server may be
+// restarting); 400/401 is fatal.
 WorkerState Worker::Impl::register_worker() {
   for (;;) {
     if (stopping()) return WorkerState::Stopped;
-    const HttpResponse r = api->register_worker({cfg.name});
+    const std::string previous = self.worker_id().empty() ? identity->saved_id() : self.worker_id();
+    const HttpResponse r = api->register_worker({cfg.name, previous});
     if (r.status == 200 || r.status == 201) {
       try {
         std::lock_guard<std::mutex> lock(id_mutex);
@@ -155,6 +161,7 @@ WorkerState Worker::Impl::register_worker() {
         spdlog::error("worker: bad register answer: {}", e.what());
         return WorkerState::Fatal;
       }
+      identity->save(self.worker_id());
       spdlog::info("worker '{}' registered as {} with {}", cfg.name, self.worker_id(),
                    cfg.server_url);
       backoff.reset();

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <set>
 
 #include "jobs/job_store.h"
 #include "tests/cli/farm_test_fixture.h"
@@ -12,6 +13,15 @@ namespace vesper::test {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Lines of a worker's log saying it registered.
+int count_registrations(const std::string& log) {
+  int n = 0;
+  for (size_t at = log.find("registered as"); at != std::string::npos;
+       at = log.find("registered as", at + 1))
+    ++n;
+  return n;
+}
 
 // Every file under `dir`, recursively, relative to it.
 std::vector<std::string> files_under(const fs::path& dir) {
@@ -74,6 +84,31 @@ TEST_F(FarmTest, JobNamesStayInsideTheFetchFolderAndNamesAreEscaped) {
     EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find('\r'), std::string::npos) << r.out;
   }
+}
+
+// A worker restarted on the same cache dir (here killed with SIGKILL each
+// time) registers again with the id it had: the server keeps one entry for
+// it (workers.json did grow by one per restart).
+TEST_F(FarmTest, ARestartedWorkerKeepsItsIdAndWorkersJsonDoesNotGrow) {
+  const auto config = write_config(10);
+  start_server(config);
+  std::set<std::string> ids;
+  for (int run = 0; run < 4; ++run) {
+    auto& w = start_worker("same", config);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (count_registrations(worker_log("same")) < 1 &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const std::string log = worker_log("same");
+    const size_t at = log.find(" as ");
+    ASSERT_NE(at, std::string::npos) << log;
+    ids.insert(log.substr(at + 4, 32));
+    w.signal(SIGKILL);
+    ASSERT_TRUE(w.wait_for(5));
+  }
+  EXPECT_EQ(ids.size(), 1u);
+  const auto doc = nlohmann::json::parse(slurp(dir_ / "data" / "workers.json"));
+  EXPECT_EQ(doc.at("workers").size(), 1u) << doc.dump();
 }
 
 }  // namespace
