@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <set>
 
+#include "common/sha256.h"
 #include "jobs/job_store.h"
 #include "tests/cli/farm_test_fixture.h"
 
@@ -109,6 +110,46 @@ TEST_F(FarmTest, ARestartedWorkerKeepsItsIdAndWorkersJsonDoesNotGrow) {
   EXPECT_EQ(ids.size(), 1u);
   const auto doc = nlohmann::json::parse(slurp(dir_ / "data" / "workers.json"));
   EXPECT_EQ(doc.at("workers").size(), 1u) << doc.dump();
+}
+
+// The worker checks again what the server checked at submit: a job whose
+// scene references a file outside the task directory (here put in the store
+// as an older server would have accepted it) fails on the worker with a log
+// naming the JSON path and the file, and the file is never read. A local
+// `vesper render` of one's own scene keeps its absolute paths.
+TEST_F(FarmTest, AWorkerRefusesSceneFilesOutsideTheTaskDirectory) {
+  const auto config = write_config(10);
+  const fs::path scene = write_scene(16, 12, 1);  // the cube mesh by absolute path
+  const std::string text = slurp(scene);
+  const std::string sha = sha256_hex(text);
+  const fs::path blob = dir_ / "data" / "blobs" / sha.substr(0, 2) / sha.substr(2);
+  fs::create_directories(blob.parent_path());
+  std::ofstream(blob) << text;
+  {
+    JobStore old(dir_ / "data" / "jobs.sqlite");
+    JobSpec spec;
+    spec.name = "outside";
+    spec.scene = sha;
+    spec.frames = {1};
+    spec.spp = 1;
+    spec.max_attempts = 1;
+    old.submit(spec, 0);
+  }
+  start_server(config);
+  start_worker("w1", config);
+  const auto j = wait_finished(1, 120);
+  EXPECT_EQ(j.at("counts").at("failed"), 1) << j.dump();
+  const RunResult logs = farm("logs 1");
+  EXPECT_EQ(logs.exit_code, 0) << logs.err;
+  EXPECT_NE(logs.out.find("/shapes/"), std::string::npos) << logs.out;
+  EXPECT_NE(logs.out.find("cube.obj' is an absolute path"), std::string::npos) << logs.out;
+  EXPECT_NE(logs.out.find("exit code 2"), std::string::npos) << logs.out;
+
+  const std::string render = "render " + scene.string() + " -o " + (dir_ / "local.exr").string();
+  EXPECT_EQ(run(render + " -q").exit_code, 0);
+  const RunResult refused = run(render + " --scene-dir-only -q");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("is an absolute path"), std::string::npos) << refused.err;
 }
 
 }  // namespace

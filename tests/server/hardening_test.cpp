@@ -213,5 +213,48 @@ TEST_F(HardeningTest, DataDirAndItsFilesArePrivateWhateverExistedBefore) {
   EXPECT_EQ(mode_of(c.data_dir / "jobs.sqlite"), private_file);
 }
 
+// A submitted scene may not reference files outside its task directory: an
+// absolute path or '..' would render the worker's own files into the frame.
+TEST_F(HardeningTest, SceneReferencesOutsideTheTaskDirectoryAre400) {
+  start();
+  const json base = {{"format", "vesper-scene/1"},
+                     {"shapes", json::array({{{"type", "mesh"}, {"file", "assets/cube.obj"}}})}};
+  const std::string cube = put_blob("v 0 0 0\n");
+  const json assets = json::array({{{"name", "assets/cube.obj"}, {"blob", cube}}});
+  struct Case {
+    std::string json_path;
+    json scene;
+  };
+  json env = base, vdb = base, deep = base;
+  env["lights"] = json::array({{{"type", "environment"}, {"file", "/etc/passwd"}}});
+  vdb["media"] = {{"smoke", {{"type", "vdb"}, {"file", "../../smoke.vdb"}}}};
+  deep["shapes"][0]["file"] = "assets/../../../home/x.obj";
+  for (const auto& [path, scene] : {Case{"/lights/0/file", env}, Case{"/media/smoke/file", vdb},
+                                    Case{"/shapes/0/file", deep}}) {
+    const std::string blob = put_blob(scene.dump());
+    for (const char* query : {"", "?dry_run=1"}) {
+      const auto [status, error] =
+          post_raw(std::string("/jobs") + query,
+                   json{{"scene", blob}, {"frames", "1"}, {"assets", assets}}.dump(), sub());
+      EXPECT_EQ(status, 400) << path;
+      EXPECT_EQ(error.value("path", ""), "/scene") << error.dump();
+      const std::string message = error.value("error", "");
+      EXPECT_NE(message.find(path + ": '"), std::string::npos) << message;
+      EXPECT_NE(message.find("outside its directory"), std::string::npos) << message;
+    }
+  }
+  EXPECT_EQ(get_ok("/jobs").at("jobs").size(), 0u);
+  // Inside the directory, and scenes that are not JSON (the renderer says why).
+  EXPECT_EQ(
+      post_raw("/jobs",
+               json{{"scene", put_blob(base.dump())}, {"frames", "1"}, {"assets", assets}}.dump(),
+               sub())
+          .first,
+      201);
+  EXPECT_EQ(
+      post_raw("/jobs", json{{"scene", put_blob("not json")}, {"frames", "1"}}.dump(), sub()).first,
+      201);
+}
+
 }  // namespace
 }  // namespace vesper
