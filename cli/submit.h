@@ -23,6 +23,7 @@ struct JobRequest {
   // Noise target, min/max spp, time limit per frame; each unset = the
   // scene's render.* (docs/farm.md, "Noise targets and time limits").
   BudgetRequest sampling;
+  std::optional<double> task_timeout;  // seconds per task render; unset = the server's default
 };
 
 // A job request that does not fit together (min spp above max spp, a min spp

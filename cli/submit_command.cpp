@@ -65,6 +65,7 @@ JobRequest job_request_defaults(const FarmSettings& s, const std::filesystem::pa
   if (s.job.min_spp > 0) b.budget.min_spp = s.job.min_spp;
   if (s.job.max_spp > 0) b.max_spp = s.job.max_spp;
   if (s.job.time_limit > 0) b.budget.time_limit = s.job.time_limit;
+  if (s.job.task_timeout > 0) r.task_timeout = s.job.task_timeout;
   return r;
 }
 
@@ -76,7 +77,7 @@ JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
   namespace f = protocol::field;
   root.allow_keys({"format", f::kScene, f::kName, f::kFrames, f::kSpp, f::kSamplesPerTask,
                    f::kPriority, f::kMaxAttempts, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
-                   f::kTimeLimit});
+                   f::kTimeLimit, f::kTaskTimeout});
   const std::filesystem::path scene = root.string("scene");
   r.scene = scene.is_relative() ? file.parent_path() / scene : scene;
   r.name = root.has("name") ? root.string("name") : default_job_name(r.scene);
@@ -92,6 +93,8 @@ JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
   if (keys.budget.min_spp) b.budget.min_spp = keys.budget.min_spp;
   if (keys.max_spp) b.max_spp = keys.max_spp;
   if (keys.budget.time_limit) b.budget.time_limit = keys.budget.time_limit;
+  if (const auto t = root.optional_child(f::kTaskTimeout))
+    r.task_timeout = t->as_number(Range::left_open(0, 30 * 86400));
   return r;
 }
 
@@ -160,6 +163,7 @@ Submitted submit_job(FarmClient& client, const JobRequest& request, bool dry_run
   body.min_spp = r.sampling.budget.min_spp;
   body.max_spp = r.sampling.max_spp;
   body.time_limit = r.sampling.budget.time_limit;
+  body.task_timeout = r.task_timeout;
 
   std::string path(protocol::paths::kJobs);
   if (dry_run) path += "?" + std::string(protocol::kDryRunParam) + "=1";

@@ -25,8 +25,8 @@ struct Asset {
 // Why `name` is not an acceptable asset name, or empty when it is: a
 // non-empty relative path of at most kMaxAssetNameLength bytes, made of
 // '/'-separated segments that are neither empty, "." nor ".."; no backslash,
-// no control character (NUL, ESC, newline, ...), not absolute. Checked by the server on submit and again by the
-// worker before a name becomes a path.
+// no control character (NUL, ESC, newline, ...), not absolute. Checked by the server on submit and
+// again by the worker before a name becomes a path.
 constexpr size_t kMaxAssetNameLength = 255;
 std::string asset_name_problem(std::string_view name);
 
@@ -40,6 +40,9 @@ struct JobSpec {
   int max_attempts = 3;
   std::vector<Asset> assets;  // files the scene references, in submission order
   RenderBudget budget;        // noise target, min spp, time limit of each frame
+  // Seconds one render of a task may take before its worker kills it (and
+  // fails the attempt); unset: the server's default.
+  std::optional<double> task_timeout;
 };
 
 enum class TaskState { Queued, Leased, Done, Failed, Canceled, Paused };
@@ -67,8 +70,9 @@ struct Lease {
   double expiry = 0;     // seconds, the store's clock
   std::string scene;
   int spp = 0;
-  std::vector<Asset> assets;  // the job's assets
-  RenderBudget budget;        // this task's share of its frame's (task_budget)
+  std::vector<Asset> assets;           // the job's assets
+  RenderBudget budget;                 // this task's share of its frame's (task_budget)
+  std::optional<double> task_timeout;  // the job's (unset: the server's default applies)
 };
 
 // What a frame's output says of its noise (its EXR's vesper:* metadata);

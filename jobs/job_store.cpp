@@ -40,7 +40,8 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
       .run();
   lease.task = *store.leased_task(lease.lease_id);
   sql::Stmt job(store.db,
-                "SELECT scene, spp, noise_target, min_spp, time_limit FROM jobs WHERE id = ?1");
+                "SELECT scene, spp, noise_target, min_spp, time_limit, task_timeout FROM jobs "
+                "WHERE id = ?1");
   job.bind(1, lease.task.job_id);
   job.step();
   lease.scene = job.text(0);
@@ -49,6 +50,7 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
   frame.noise_target = job.optional_f64(2);
   if (const auto min_spp = job.optional_i64(3)) frame.min_spp = int(*min_spp);
   frame.time_limit = job.optional_f64(4);
+  lease.task_timeout = job.optional_f64(5);
   lease.budget = task_budget(frame, lease.spp, lease.task.sample_begin, lease.task.sample_end);
   lease.assets = store.assets(lease.task.job_id);
   return lease;
@@ -82,6 +84,8 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   for (const Asset& a : spec.assets)
     if (const std::string why = asset_name_problem(a.name); !why.empty())
       throw StoreError("job '" + spec.name + "': asset name '" + a.name + "' " + why);
+  if (spec.task_timeout && !(*spec.task_timeout > 0))
+    throw StoreError("job '" + spec.name + "': task_timeout must be positive");
   if (const auto why = budget_problem(spec.budget, spec.spp))
     throw StoreError("job '" + spec.name + "': " + why->field + ": " + why->message);
   auto& db = impl_->db;
@@ -89,8 +93,8 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   const RenderBudget& b = spec.budget;
   sql::Stmt(db,
             "INSERT INTO jobs(name, scene, spp, priority, max_attempts, state, created, "
-            "inputs_key, noise_target, min_spp, time_limit) "
-            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, ?8, ?9, ?10)")
+            "inputs_key, noise_target, min_spp, time_limit, task_timeout) "
+            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, ?8, ?9, ?10, ?11)")
       .bind(1, spec.name)
       .bind(2, spec.scene)
       .bind(3, int64_t(spec.spp))
@@ -101,6 +105,7 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
       .bind(8, b.noise_target)
       .bind(9, b.min_spp ? std::optional<int64_t>(*b.min_spp) : std::nullopt)
       .bind(10, b.time_limit)
+      .bind(11, spec.task_timeout)
       .run();
   const int64_t job = sqlite3_last_insert_rowid(db.get());
   for (size_t i = 0; i < spec.assets.size(); ++i)

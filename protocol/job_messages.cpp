@@ -34,7 +34,8 @@ VESPER_JSON_FIELDS(SubmitRequest, required(f::kName, &SubmitRequest::name),
                    optional(f::kNoiseTarget, &SubmitRequest::noise_target),
                    optional(f::kMinSpp, &SubmitRequest::min_spp),
                    optional(f::kMaxSpp, &SubmitRequest::max_spp),
-                   optional(f::kTimeLimit, &SubmitRequest::time_limit))
+                   optional(f::kTimeLimit, &SubmitRequest::time_limit),
+                   optional(f::kTaskTimeout, &SubmitRequest::task_timeout))
 VESPER_JSON_FIELDS(SubmitResponse, required(f::kId, &SubmitResponse::id),
                    required(f::kTaskCount, &SubmitResponse::task_count))
 VESPER_JSON_FIELDS(DryRunResponse, required(f::kDryRun, &DryRunResponse::dry_run),

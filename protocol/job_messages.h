@@ -31,6 +31,9 @@ struct SubmitRequest {
   std::optional<double> noise_target;   // relative error of each pixel's mean, > 0
   std::optional<int> min_spp, max_spp;  // with noise_target; max_spp replaces spp
   std::optional<double> time_limit;     // seconds of rendering per frame, > 0
+  // Seconds one render of one task may take before its worker kills it
+  // (that attempt fails); left out: the server's default.
+  std::optional<double> task_timeout;
 };
 
 // 201 answer to POST /jobs.

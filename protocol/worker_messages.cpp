@@ -31,7 +31,8 @@ VESPER_JSON_FIELDS(LeaseResponse, required(f::kLeaseId, &LeaseResponse::lease_id
                    required(f::kTask, &LeaseResponse::task),
                    optional(f::kNoiseTarget, &LeaseResponse::noise_target),
                    optional(f::kMinSpp, &LeaseResponse::min_spp),
-                   optional(f::kTimeLimit, &LeaseResponse::time_limit))
+                   optional(f::kTimeLimit, &LeaseResponse::time_limit),
+                   optional(f::kTaskTimeout, &LeaseResponse::task_timeout))
 VESPER_JSON_FIELDS(HeartbeatRequest, required(f::kLeaseId, &HeartbeatRequest::lease_id),
                    required(f::kProgress, &HeartbeatRequest::progress))
 VESPER_JSON_FIELDS(HeartbeatResponse, required(f::kAnswer, &HeartbeatResponse::answer))

@@ -65,6 +65,10 @@ struct LeaseResponse {
   std::optional<double> noise_target;
   std::optional<int> min_spp;
   std::optional<double> time_limit;
+  // Seconds the render may take: the worker kills it after that and fails
+  // the attempt (the job's task_timeout, else the server's default; left out
+  // when neither is set).
+  std::optional<double> task_timeout;
 };
 
 // POST /heartbeat

@@ -20,6 +20,9 @@ namespace f = protocol::field;
 
 constexpr const char* kBody = "request body";
 
+// Seconds a task's render may take: more than a month is a typo.
+const Range kTaskTimeoutRange = Range::left_open(0, 30 * 86400);
+
 // Parses `body` and reads its root with `read`; a JsonError becomes ApiError
 // 400 at its JSON path.
 template <class Read>
@@ -138,8 +141,8 @@ std::vector<int> read_frames(const JsonReader& frames) {
 
 JobSpec read_job(JsonReader& o) {
   o.allow_keys({f::kName, f::kScene, f::kFrames, f::kSpp, f::kSamplesPerTask, f::kPriority,
-                f::kMaxAttempts, f::kAssets, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
-                f::kTimeLimit});
+                f::kMaxAttempts, f::kAssets, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp, f::kTimeLimit,
+                f::kTaskTimeout});
   JobSpec spec;
   spec.name = read_name(o, f::kName, 256, "job");
   spec.scene = sha256_at(o, f::kScene, "an uploaded scene blob");
@@ -153,6 +156,8 @@ JobSpec read_job(JsonReader& o) {
   if (const auto why = budget_problem(budget, spec.spp)) o.fail_key(why->field, why->message);
   spec.spp = budget.frame_spp(spec.spp);
   spec.budget = budget.budget;
+  if (const auto v = o.optional_child(f::kTaskTimeout))
+    spec.task_timeout = v->as_number(kTaskTimeoutRange);
   const int64_t n = task_count(spec);
   if (n > kMaxTasksPerJob)
     o.fail_key(spec.samples_per_task > 0 ? f::kSamplesPerTask : f::kFrames,

@@ -67,8 +67,9 @@ struct Server::Impl {
   HandlerTable handlers() {
     HandlerTable table;
     add_job_handlers(table, {store, blobs, leases, merger, clock});
-    add_worker_handlers(table, {store, blobs, workers, leases, counters, clock,
-                                config.lease_seconds, [this] { merger.wake(); }});
+    add_worker_handlers(table,
+                        {store, blobs, workers, leases, counters, clock, config.lease_seconds,
+                         config.task_timeout, [this] { merger.wake(); }});
     add_frame_handlers(table, {store, blobs, merger});
     add_blob_handlers(table, blobs);
     add_ops_handlers(table, {store, workers, counters});

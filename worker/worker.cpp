@@ -1,5 +1,6 @@
 #include "worker/worker.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -259,6 +260,7 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
   watch.heartbeat_seconds = std::max(0.05, std::min(cfg.heartbeat_seconds, l.lease_seconds / 3));
   watch.kill_grace_seconds = cfg.kill_grace_seconds;
   watch.log_tail_bytes = kLogTail;
+  watch.timeout_seconds = l.task_timeout;
   if (auto it = durations.find(duration_key); it != durations.end())
     watch.expected_seconds = it->second;
   const RenderRun r = run_render(argv, watch, [&](double p) { return heartbeat(l, p); });
@@ -272,6 +274,16 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
   if (r.end == RenderRun::End::Dropped) {
     fs::remove(out, ec);
     ++self.dropped_;
+    return std::nullopt;
+  }
+  if (r.end == RenderRun::End::TimedOut) {
+    const std::string why = fmt::format(
+        "the render ran longer than the task timeout of {} s and was killed (pid {}, {})",
+        *l.task_timeout, r.pid, r.status);
+    spdlog::warn("task {}: {}", l.task.id, why);
+    fail(l, "worker: " + why + "\ncommand: " + command_line(argv) + "\n--- stderr (tail) ---\n" +
+                r.stderr_tail);
+    fs::remove(out, ec);
     return std::nullopt;
   }
   if (!r.succeeded || !fs::exists(out)) {

@@ -152,5 +152,67 @@ TEST_F(FarmTest, AWorkerRefusesSceneFilesOutsideTheTaskDirectory) {
   EXPECT_NE(refused.err.find("is an absolute path"), std::string::npos) << refused.err;
 }
 
+// True while `pid` is a live process (not gone, not a zombie).
+bool alive(long pid) {
+  const std::string stat = slurp("/proc/" + std::to_string(pid) + "/stat");
+  const size_t paren = stat.rfind(')');
+  return paren != std::string::npos && paren + 2 < stat.size() && stat[paren + 2] != 'Z';
+}
+
+std::vector<long> pids_in(const fs::path& file) {
+  std::vector<long> out;
+  std::ifstream in(file);
+  for (long pid; in >> pid;) out.push_back(pid);
+  return out;
+}
+
+// A render that runs too long is killed when its task timeout passes (the
+// job's task_timeout, else the farm default of farm.toml), with everything it
+// started, and that attempt fails with a clear log line.
+TEST_F(FarmTest, TaskTimeoutKillsARenderThatRunsTooLong) {
+  const auto config = dir_ / "farm.toml";
+  std::ofstream(config) << "[server]\nlease_seconds = 10\ntask_timeout = 2.0\n"
+                           "[worker]\nheartbeat_seconds = 0.3\nidle_backoff_min = 0.05\n"
+                           "idle_backoff_max = 0.3\nkill_grace_seconds = 0.5\n";
+  const auto scene = write_scene(16, 12, 1);
+  // A renderer that never finishes, and starts another process that would
+  // outlive it if only the renderer were killed.
+  const auto slow = dir_ / "slow-renderer.sh";
+  std::ofstream(slow) << "#!/bin/sh\nsleep 60 &\necho $! >> " << (dir_ / "pids").string()
+                      << "\necho $$ >> " << (dir_ / "pids").string() << "\nexec sleep 60\n";
+  fs::permissions(slow, fs::perms::owner_all);
+  std::ofstream(dir_ / "job.json") << nlohmann::json{
+      {"format", "vesper-job/1"},
+      {"scene", scene.string()},
+      {"name", "own-timeout"},
+      {"max_attempts", 1},
+      {"task_timeout", 0.5}}.dump();
+  start_server(config);
+  start_worker("w1", config, {"--renderer", slow.string()});
+  const auto started = std::chrono::steady_clock::now();
+  const long long own = submit((dir_ / "job.json").string());
+  auto j = wait_finished(own, 60);
+  const double took =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  EXPECT_EQ(j.at("counts").at("failed"), 1) << j.dump();
+  EXPECT_LT(took, 20) << "a 0.5 s timeout on a 60 s render";
+  // The farm default (2 s) for a job that sets none.
+  const long long by_default = submit(scene.string() + " --frames 1 --max-attempts 1");
+  j = wait_finished(by_default, 60);
+  EXPECT_EQ(j.at("counts").at("failed"), 1) << j.dump();
+
+  for (const auto& [job, timeout] : {std::pair{own, "0.5 s"}, std::pair{by_default, "2 s"}}) {
+    const RunResult logs = farm(fmt::format("logs {}", job));
+    EXPECT_NE(logs.out.find(std::string("ran longer than the task timeout of ") + timeout +
+                            " and was killed"),
+              std::string::npos)
+        << logs.out;
+  }
+  EXPECT_NE(worker_log("w1").find("task timeout"), std::string::npos) << worker_log("w1");
+  const std::vector<long> pids = pids_in(dir_ / "pids");
+  EXPECT_EQ(pids.size(), 4u);  // two renders, each with a background sleep
+  for (long pid : pids) EXPECT_FALSE(alive(pid)) << "process " << pid << " outlived its render";
+}
+
 }  // namespace
 }  // namespace vesper::test

@@ -21,7 +21,8 @@ class JobStoreTest : public ::testing::Test {
   fs::path db() const { return dir_ / "jobs.sqlite"; }
   static JobSpec spec(std::vector<int> frames, int spp = 8, int split = 0, int priority = 50,
                       int attempts = 3) {
-    return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts, {}, {}};
+    return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts, {},
+                   {},    {}};
   }
   test::TempDir dir_{"jobs"};
 };
@@ -37,7 +38,7 @@ TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {
   EXPECT_EQ(tasks[2].sample_end, 10);  // the last range is short
   EXPECT_EQ(tasks[3].frame, 2);
   EXPECT_EQ(s.job(j)->queued, 6);
-  EXPECT_EQ(s.schema_version(), 6);
+  EXPECT_EQ(s.schema_version(), 7);
 }
 
 TEST_F(JobStoreTest, LeasesByPriorityThenAgeThenFrame) {
@@ -340,7 +341,7 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
 )sql");
   }
   JobStore s(db());
-  EXPECT_EQ(s.schema_version(), 6);
+  EXPECT_EQ(s.schema_version(), 7);
   EXPECT_EQ(s.job(1)->name, "old");
   EXPECT_TRUE(s.assets(1).empty());
   EXPECT_TRUE(s.frame(1, 1)->complete());
@@ -358,4 +359,17 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
 }
 
 }  // namespace
+TEST_F(JobStoreTest, ALeaseCarriesItsJobsTaskTimeout) {
+  JobStore s(db());
+  JobSpec timed = spec({1});
+  timed.task_timeout = 90;
+  s.submit(timed, 0);
+  s.submit(spec({1}), 0);
+  EXPECT_EQ(s.lease("w", 1)->task_timeout, 90);
+  EXPECT_FALSE(s.lease("w", 1)->task_timeout);  // unset: the server's default applies
+  JobSpec bad = spec({1});
+  bad.task_timeout = 0;
+  EXPECT_THROW(s.submit(bad, 0), StoreError);
+}
+
 }  // namespace vesper

@@ -185,12 +185,14 @@ TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
   submit.noise_target = 0.01;
   submit.min_spp = submit.max_spp = 8;
   submit.time_limit = 60;
+  submit.task_timeout = 3600;
   EXPECT_EQ(keys_of(nlohmann::json(submit)), properties(doc, "SubmitRequest"));
 
   LeaseResponse lease;
   lease.noise_target = 0.02;
   lease.min_spp = 8;
   lease.time_limit = 30;
+  lease.task_timeout = 3600;
   EXPECT_EQ(keys_of(nlohmann::json(lease)), properties(doc, "LeaseResponse"));
   EXPECT_EQ(keys_of(nlohmann::json(lease.task)), properties(doc, "LeasedTask"));
 

@@ -256,5 +256,29 @@ TEST_F(HardeningTest, SceneReferencesOutsideTheTaskDirectoryAre400) {
       201);
 }
 
+// The lease carries the job's task timeout, else the server's default.
+TEST_F(HardeningTest, LeasesCarryTheTaskTimeout) {
+  ServerConfig c = config();
+  c.task_timeout = 120;
+  start(c);
+  const std::string scene = put_blob("{}");
+  for (const json& bad : {json(0), json(-1), json(1e9), json("60")}) {
+    const auto [status, error] = post_raw(
+        "/jobs", json{{"scene", scene}, {"frames", "1"}, {"task_timeout", bad}}.dump(), sub());
+    EXPECT_EQ(status, 400) << bad;
+    EXPECT_EQ(error.value("path", ""), "/task_timeout") << error.dump();
+  }
+  post_ok("/jobs", {{"scene", scene}, {"frames", "1"}, {"task_timeout", 7.5}}, sub(), 201);
+  post_ok("/jobs", {{"scene", scene}, {"frames", "1"}}, sub(), 201);
+  const std::string w = register_worker("w");
+  EXPECT_EQ(lease(w).at("task_timeout"), 7.5);
+  EXPECT_EQ(lease(w).at("task_timeout"), 120);
+  c = config();
+  c.task_timeout = 0;  // no farm default
+  start(c);
+  post_ok("/jobs", {{"scene", scene}, {"frames", "1"}}, sub(), 201);
+  EXPECT_FALSE(lease(w).contains("task_timeout"));
+}
+
 }  // namespace
 }  // namespace vesper
