@@ -197,6 +197,17 @@ bool JobStore::fail(const std::string& lease_id, const std::string& log_tail, do
   return true;
 }
 
+int JobStore::renew_leases(double now) {
+  sql::Transaction tx(impl_->db);
+  sql::Stmt(impl_->db,
+            "UPDATE tasks SET lease_expiry = MAX(lease_expiry, ?1) WHERE state = 'leased'")
+      .bind(1, now + impl_->options.lease_seconds)
+      .run();
+  const int n = sqlite3_changes(impl_->db.get());
+  tx.commit();
+  return n;
+}
+
 int JobStore::expire_leases(double now) {
   sql::Transaction tx(impl_->db);
   const int n = impl_->expire(now);

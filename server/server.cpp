@@ -86,6 +86,11 @@ int Server::start() {
   if (s.started) throw std::logic_error("Server::start called twice");
   s.started = true;
   s.http.route(s.handlers());
+  // Before anything can expire a lease: while this server was down no worker
+  // could heartbeat, and a lease lost to a restart would charge its task.
+  if (const int renewed =
+          s.store.with([&](JobStore& st) { return st.renew_leases(s.clock.now()); }))
+    spdlog::info("renewed {} leases held before the restart", renewed);
   s.bound_port = s.http.bind();
   s.http.serve();
   s.leases.start_reaper(s.config.reaper_interval > 0 ? s.config.reaper_interval

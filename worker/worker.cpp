@@ -15,6 +15,7 @@
 #include "protocol/worker_messages.h"
 #include "worker/backoff.h"
 #include "worker/blob_cache.h"
+#include "worker/lease_retry.h"
 #include "worker/render_command.h"
 #include "worker/server_api.h"
 #include "worker/task_dir.h"
@@ -83,12 +84,14 @@ struct Worker::Impl {
   WorkerState register_worker();
   WorkerState lease();
   void work_on(const protocol::LeaseResponse& l);
-  std::optional<fs::path> fetch(const protocol::LeaseResponse& l);
+  std::optional<fs::path> fetch(const protocol::LeaseResponse& l, LeaseRetry& retry);
   std::optional<fs::path> run(const protocol::LeaseResponse& l, const fs::path& task_dir,
-                              double& seconds);
-  bool heartbeat(const protocol::LeaseResponse& l, double progress);
-  void upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out, double seconds);
+                              double& seconds, LeaseRetry& retry);
+  bool heartbeat(const protocol::LeaseResponse& l, double progress, LeaseRetry& retry);
+  void upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out, double seconds,
+                           LeaseRetry& retry);
   void fail(const protocol::LeaseResponse& l, const std::string& log);
+  void drop(const protocol::LeaseResponse& l, const std::string& why);
 };
 
 Worker::Worker(WorkerConfig config) : impl_(std::make_unique<Impl>(*this, std::move(config))) {}
@@ -212,27 +215,35 @@ WorkerState Worker::Impl::lease() {
   return WorkerState::Lease;
 }
 
-// fetch → run → upload → complete; a problem at any step fails the task
-// (the worker carries on).
+// fetch → run → upload → complete; a problem of the task at any step fails
+// it, a server away for longer than the lease could live drops it (the
+// worker carries on either way).
 void Worker::Impl::work_on(const protocol::LeaseResponse& l) {
   spdlog::info("task {} (job {}, frame {}, samples [{}, {}) of {}{}, attempt {}): leased",
                l.task.id, l.task.job_id, l.task.frame, l.task.sample_begin, l.task.sample_end,
                l.spp, describe_budget(l), l.task.attempt);
-  const std::optional<fs::path> task_dir = fetch(l);
+  LeaseRetry retry(l.lease_seconds, Backoff(cfg.idle_backoff_min, cfg.idle_backoff_max),
+                   self.stop_);
+  const std::optional<fs::path> task_dir = fetch(l, retry);
   if (!task_dir) return;
   double seconds = 0;
-  const std::optional<fs::path> out = run(l, *task_dir, seconds);
+  const std::optional<fs::path> out = run(l, *task_dir, seconds, retry);
   if (!out) return;
-  upload_and_complete(l, *out, seconds);
+  upload_and_complete(l, *out, seconds, retry);
 }
 
 // The scene and its assets, from the verified cache, in a task directory.
-std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l) {
-  std::string problem =
-      cache->fetch(l.scene, cfg.cache_dir / (l.scene + ".json"), "scene", unique_name());
-  for (size_t i = 0; problem.empty() && i < l.assets.size(); ++i)
-    problem = cache->fetch(l.assets[i].blob, asset_cache_file(cfg.cache_dir, l.assets[i].blob),
-                           "asset '" + l.assets[i].name + "'", unique_name());
+std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l, LeaseRetry& retry) {
+  BlobCache::Fetched got = cache->fetch(l.scene, cfg.cache_dir / (l.scene + ".json"), "scene",
+                                        unique_name(), retry, l.task.id);
+  for (size_t i = 0; got.problem.empty() && i < l.assets.size(); ++i)
+    got = cache->fetch(l.assets[i].blob, asset_cache_file(cfg.cache_dir, l.assets[i].blob),
+                       "asset '" + l.assets[i].name + "'", unique_name(), retry, l.task.id);
+  if (got.gave_up) {
+    drop(l, got.problem);
+    return std::nullopt;
+  }
+  std::string problem = got.problem;
   if (problem.empty()) {
     try {
       std::vector<Asset> assets;  // the job store's spelling of the lease's assets
@@ -250,7 +261,8 @@ std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l) {
 // Renders in a child process, heartbeating; returns the output file, or
 // nullopt when the task was dropped or failed (then reported and cleaned up).
 std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
-                                          const fs::path& task_dir, double& seconds) {
+                                          const fs::path& task_dir, double& seconds,
+                                          LeaseRetry& retry) {
   const fs::path out =
       cfg.cache_dir / "tmp" / ("render-" + unique_name() + render_output_extension(l));
   const std::vector<std::string> argv = render_command(l, cfg, task_dir / "scene.json", out);
@@ -263,7 +275,7 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
   watch.timeout_seconds = l.task_timeout;
   if (auto it = durations.find(duration_key); it != durations.end())
     watch.expected_seconds = it->second;
-  const RenderRun r = run_render(argv, watch, [&](double p) { return heartbeat(l, p); });
+  const RenderRun r = run_render(argv, watch, [&](double p) { return heartbeat(l, p, retry); });
   seconds = r.seconds;
   std::error_code ec;
   if (r.end == RenderRun::End::NotStarted) {
@@ -299,8 +311,9 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
 }
 
 // One heartbeat; false when the render must stop ("stop": job canceled or
-// paused; 409: the lease is stale). A transport failure waits for the next beat.
-bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress) {
+// paused; 409: the lease is stale). A transport failure waits for the next
+// beat; an accepted beat renews the lease (`retry`'s deadline).
+bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress, LeaseRetry& retry) {
   const HttpResponse hb = api->heartbeat({l.lease_id, progress});
   bool stop = false;
   if (hb.status == 200) {
@@ -310,6 +323,7 @@ bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress) 
     } catch (const json::exception&) {
       // An answer this worker does not understand is not an order to stop.
     }
+    if (!stop) retry.confirmed();
   }
   if (hb.status == 409 || stop) {
     spdlog::info("task {}: {}; killing the render", l.task.id,
@@ -322,15 +336,18 @@ bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress) 
 
 // Upload the result (content addressed), then complete; the temp file always goes.
 void Worker::Impl::upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out,
-                                       double seconds) {
-  const Upload up = upload_result(*api, out, l.task.id);
+                                       double seconds, LeaseRetry& retry) {
+  const Upload up = upload_result(*api, out, l.task.id, retry);
   std::error_code ec;
   fs::remove(out, ec);
   if (!up.blob) {
-    fail(l, "worker: upload of the result failed: " + up.problem);
+    if (up.gave_up)
+      drop(l, "the upload of the result: " + up.problem);
+    else
+      fail(l, "worker: upload of the result failed: " + up.problem);
     return;
   }
-  switch (complete_task(*api, l.lease_id, *up.blob, l.task.id)) {
+  switch (complete_task(*api, l.lease_id, *up.blob, l.task.id, retry)) {
     case Completion::Completed:
       spdlog::info("task {}: done in {:.2f} s, result {}", l.task.id, seconds, *up.blob);
       ++self.completed_;
@@ -338,9 +355,23 @@ void Worker::Impl::upload_and_complete(const protocol::LeaseResponse& l, const f
     case Completion::Stale:
       ++self.dropped_;
       break;
+    case Completion::GaveUp:
+      drop(l, "the completion was not taken");
+      break;
     case Completion::Failed:
       break;
   }
+}
+
+// The server stayed away or in trouble for as long as the lease could live:
+// not the task's fault, so no POST /fail (no attempt charged, no blocklist);
+// the lease expires on the server and the task is rendered again.
+void Worker::Impl::drop(const protocol::LeaseResponse& l, const std::string& why) {
+  spdlog::warn(
+      "task {}: dropped, the server could not be reached in time ({}); it will be "
+      "rendered again",
+      l.task.id, why);
+  ++self.dropped_;
 }
 
 void Worker::Impl::fail(const protocol::LeaseResponse& l, const std::string& log) {

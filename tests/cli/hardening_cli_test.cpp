@@ -214,5 +214,56 @@ TEST_F(FarmTest, TaskTimeoutKillsARenderThatRunsTooLong) {
   for (long pid : pids) EXPECT_FALSE(alive(pid)) << "process " << pid << " outlived its render";
 }
 
+// The server restarted for longer than the old ~1.4 s retry window (and
+// longer than a lease) while a worker uploads a finished render: the worker
+// keeps retrying, the restarted server renews the lease, the render is kept,
+// no attempt is charged and nobody is blocklisted (threshold 1 here); the
+// worker carries on with the next frame.
+TEST_F(FarmTest, AServerRestartDuringAnUploadLosesNoRenderAndChargesNothing) {
+  const auto config = write_config(/*lease_seconds=*/3, /*blocklist_threshold=*/1);
+  // The worker retries every 1-2 s: the restarted server's reaper (every
+  // 0.75 s) looks at the lease before the retry comes, so the lease must
+  // have been renewed at the restart for the completion to be taken.
+  const auto patient = dir_ / "patient.toml";
+  std::ofstream(patient) << "[worker]\nheartbeat_seconds = 0.3\nidle_backoff_min = 2.0\n"
+                            "idle_backoff_max = 2.0\n";
+  const auto scene = write_scene(16, 12, 2);
+  // Renders, then (the first time) holds its finished output until the test
+  // has stopped the server: the worker uploads into a dead server.
+  const auto held = dir_ / "held-renderer.sh";
+  const std::string rendered = (dir_ / "rendered").string(), go = (dir_ / "go").string();
+  // (The render's parent is this script, not the worker: VESPER_PARENT_PID says so.)
+  std::ofstream(held) << "#!/bin/sh\nVESPER_PARENT_PID=$$ " << VESPER_BINARY
+                      << " \"$@\" || exit $?\n"
+                      << "if [ ! -e " << go << " ]; then touch " << rendered << "; while [ ! -e "
+                      << go << " ]; do sleep 0.05; done; fi\n";
+  fs::permissions(held, fs::perms::owner_all);
+  start_server(config);
+  start_worker("w1", patient, {"--renderer", held.string()});
+  const long long id = submit(scene.string() + " --frames 1-2 --name restart-upload");
+  for (int i = 0; i < 1200 && !fs::exists(rendered); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(fs::exists(rendered)) << worker_log("w1");
+  server_->signal(SIGKILL);
+  ASSERT_TRUE(server_->wait_for(5));
+  std::ofstream(go) << "";
+  std::this_thread::sleep_for(std::chrono::milliseconds(4000));  // > 1.4 s and > the lease
+  start_server(config);                                          // same port and data dir
+  const auto j = wait_finished(id, 120);
+  EXPECT_EQ(j.at("counts").at("done"), 2) << j.dump();
+  for (const auto& t : j.at("tasks")) EXPECT_EQ(t.at("attempts"), 0) << t.dump();
+  EXPECT_TRUE(j.at("blocked_workers").empty()) << j.dump();
+  const std::string log = worker_log("w1");
+  EXPECT_NE(log.find("succeeded after"), std::string::npos) << log;
+  EXPECT_EQ(log.find("dropped"), std::string::npos) << log;
+  // The kept render is the render: bitwise a local one of the same frame.
+  ASSERT_EQ(farm(fmt::format("fetch {} -o {}", id, (dir_ / "frames").string())).exit_code, 0);
+  ASSERT_EQ(
+      run("render " + scene.string() + " -o " + (dir_ / "local.exr").string() + " --frame 1 -q")
+          .exit_code,
+      0);
+  expect_bitwise_equal(dir_ / "frames" / "restart-upload.0001.exr", dir_ / "local.exr");
+}
+
 }  // namespace
 }  // namespace vesper::test

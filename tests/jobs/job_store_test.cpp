@@ -372,4 +372,23 @@ TEST_F(JobStoreTest, ALeaseCarriesItsJobsTaskTimeout) {
   EXPECT_THROW(s.submit(bad, 0), StoreError);
 }
 
+// A server that was down renews the leases it finds when it starts: no
+// worker could heartbeat meanwhile, so none is lost (or charged) for that.
+TEST_F(JobStoreTest, RenewedLeasesOutliveTheServersAbsence) {
+  JobStore s(db(), StoreOptions{60, 3});
+  s.submit(spec({1, 2}), 0);
+  const auto held = s.lease("w", 0);  // expires at 60
+  ASSERT_TRUE(held);
+  EXPECT_EQ(s.renew_leases(100), 1);  // a restart at 100, after a 100 s outage
+  EXPECT_EQ(s.expire_leases(150), 0);
+  EXPECT_EQ(s.heartbeat(held->lease_id, 150), HeartbeatAnswer::KeepRunning);
+  EXPECT_TRUE(s.complete(held->lease_id, "r", 151));
+  EXPECT_EQ(s.tasks(1)[0].attempts, 0);
+  // A lease nobody renews still expires, counted as before.
+  const auto lost = s.lease("w", 200);
+  EXPECT_EQ(s.expire_leases(261), 1);
+  EXPECT_EQ(s.tasks(1)[1].attempts, 1);
+  EXPECT_FALSE(s.complete(lost->lease_id, "r", 262));
+}
+
 }  // namespace vesper
