@@ -286,9 +286,9 @@ double run_case(const Case& c, const Settings& s) {
       allocation_bounds(ref.image, ref_spp, mid_spp, s.min_spp.value_or(kDefaultMinSpp));
   std::printf(
       "  ideal allocations at uniform %d spp's relMSE (reference variance, equal cost per "
-      "sample):\n    threshold on today's metric %.2fx, threshold on relMSE's term %.2fx, "
+      "sample):\n    threshold on max-channel sqrt(var)/(|m|+0.01) %.2fx, on relMSE's term %.2fx, "
       "Neyman %.2fx\n",
-      mid_spp, b.threshold_current, b.threshold_relmse, b.neyman);
+      mid_spp, b.threshold_max_channel, b.threshold_relmse, b.neyman);
   std::printf("  equal-error time uniform / adaptive, wall clock:\n");
   const double gain = print_equal_error(l, s.repeats, Cost::Wall);
   std::printf("  the same in process CPU time:\n");

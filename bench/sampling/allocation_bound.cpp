@@ -25,7 +25,7 @@ PixelTerms pixel_terms(const LayeredImage& ref, int ref_spp) {
         const double var =
             ref.at(x, y, size_t(ref.channel_index(kVarianceChannels[size_t(c)]))) * ref_spp;
         a += var / (m * m + 0.01) / 3;
-        b = std::max(b, var / std::pow(std::abs(m) + kRelativeErrorOffset, 2));
+        b = std::max(b, var / std::pow(std::abs(m) + 0.01, 2));
       }
       t.relmse.push_back(a);
       t.stopping.push_back(b);
@@ -73,7 +73,7 @@ AllocationBounds allocation_bounds(const LayeredImage& reference, int reference_
   std::transform(t.relmse.begin(), t.relmse.end(), root.begin(),
                  [](double a) { return std::sqrt(a); });
   AllocationBounds b;
-  b.threshold_current = uniform_spp / spp_at_relmse(t.relmse, t.stopping, m, relmse);
+  b.threshold_max_channel = uniform_spp / spp_at_relmse(t.relmse, t.stopping, m, relmse);
   b.threshold_relmse = uniform_spp / spp_at_relmse(t.relmse, t.relmse, m, relmse);
   b.neyman = uniform_spp / spp_at_relmse(t.relmse, root, m, relmse);
   return b;

@@ -9,9 +9,9 @@
 namespace vesper::bench {
 
 struct AllocationBounds {
-  // Samples until the stopping metric (sqrt(var) / (|mean| + 0.01), max over
-  // R, G, B) is below a threshold, at least min_spp: today's rule, ideally.
-  double threshold_current = 0;
+  // Samples until sqrt(var) / (|mean| + 0.01), max over R, G, B, is below a
+  // threshold, at least min_spp (the first adaptive rule's metric).
+  double threshold_max_channel = 0;
   // The same with relMSE's own per-pixel term (mean over R, G, B of
   // var / (mean² + 0.01)) as the metric.
   double threshold_relmse = 0;
