@@ -40,8 +40,7 @@ constexpr int kDefaultMinSpp = 16;  // render.min_spp's default (render/sampling
 struct Case {
   std::string name;  // the folder under scenes/
   int width = 0, height = 0, ref_spp = 0;
-  std::vector<int> spp;         // uniform ladder
-  std::vector<double> targets;  // adaptive ladder, as long as the uniform one
+  std::vector<int> spp;  // uniform ladder; the adaptive one is calibrated to it
 };
 
 struct Settings {
@@ -62,13 +61,14 @@ struct Run {
 
 std::vector<Case> cases(bool quick) {
   if (quick)
-    return {{"cornell", 32, 32, 64, {4, 8, 16}, {0.5, 0.3, 0.2}},
-            {"night-room", 40, 25, 64, {4, 8, 16}, {0.5, 0.3, 0.2}},
-            {"smoke", 32, 32, 64, {4, 8, 16}, {0.5, 0.3, 0.2}}};
-  return {{"cornell", 128, 128, 8192, {16, 32, 64, 128, 256}, {0.4, 0.28, 0.2, 0.14, 0.1}},
-          {"night-room", 160, 100, 8192, {16, 32, 64, 128, 256}, {0.4, 0.28, 0.2, 0.14, 0.1}},
-          {"smoke", 128, 128, 8192, {16, 32, 64, 128, 256}, {0.4, 0.28, 0.2, 0.14, 0.1}},
-          {"fog-shafts", 160, 120, 8192, {16, 32, 64, 128, 256}, {0.4, 0.28, 0.2, 0.14, 0.1}}};
+    return {{"cornell", 32, 32, 64, {4, 8, 16}},
+            {"night-room", 40, 25, 64, {4, 8, 16}},
+            {"smoke", 24, 24, 32, {4, 8, 16}}};
+  const std::vector<int> ladder = {16, 24, 32, 48, 64, 96, 128};
+  return {{"cornell", 128, 128, 8192, ladder},
+          {"night-room", 160, 100, 8192, ladder},
+          {"smoke", 128, 128, 8192, ladder},
+          {"fog-shafts", 160, 120, 8192, ladder}};
 }
 
 // Mean over R, G, B of the pixel's relMSE term (x - r)² / (r² + 0.01).
@@ -153,16 +153,38 @@ RenderOptions adaptive_options(double target, uint64_t seed, std::optional<int> 
   return o;
 }
 
+// Noise targets at which adaptive renders take about the uniform ladder's
+// spp, so that both curves span the same cost: pilot renders at targets
+// falling by sqrt(2) until one takes the middle rung's spp, then spp taken as
+// a power of the target through the last two pilots (-2, relMSE ~ 1/spp, when
+// the earlier one sat near min_spp).
+std::vector<double> calibrate_targets(const Case& c, const Scene& scene, const Settings& s) {
+  const double pixels = double(c.width) * c.height, want = c.spp[c.spp.size() / 2];
+  const double floor = 2.0 * s.min_spp.value_or(kDefaultMinSpp);
+  double x0 = 0, spp0 = 0, x1 = 0.8, spp1 = 0;
+  for (int i = 0; i < 16 && spp1 < want; ++i, x1 /= std::sqrt(2.0)) {
+    x0 = x1, spp0 = spp1;
+    spp1 = double(render(scene, adaptive_options(x1, 99, s.min_spp)).stats.camera_samples) / pixels;
+  }
+  x1 *= std::sqrt(2.0);  // the last pilot's target
+  double power = -2;
+  if (spp0 >= floor) power = std::clamp(std::log(spp1 / spp0) / std::log(x1 / x0), -4.0, -1.0);
+  std::vector<double> targets;
+  for (int n : c.spp) targets.push_back(x1 * std::pow(n / spp1, 1 / power));
+  return targets;
+}
+
 // Every rung of both ladders `repeats` times; the two methods alternate (and
 // swap which goes first) so that load from other processes hits both alike.
-Ladder measure_ladders(const Case& c, const Scene& scene, const Reference& ref, const Settings& s) {
+Ladder measure_ladders(const Case& c, const std::vector<double>& targets, const Scene& scene,
+                       const Reference& ref, const Settings& s) {
   const size_t rungs = c.spp.size();
   Ladder l{std::vector<std::vector<Run>>(rungs), std::vector<std::vector<Run>>(rungs)};
   for (int r = 0; r < s.repeats; ++r)
     for (size_t i = 0; i < rungs; ++i) {
       const uint64_t seed = 1000 + 100 * uint64_t(r) + i;
       const RenderOptions u = uniform_options(c.spp[i], seed);
-      const RenderOptions a = adaptive_options(c.targets[i], seed, s.min_spp);
+      const RenderOptions a = adaptive_options(targets[i], seed, s.min_spp);
       const bool maps = s.maps && r == 0 && i == rungs / 2;
       LayeredImage ui, ai;
       if ((r + int(i)) % 2 == 0) {
@@ -214,7 +236,7 @@ std::vector<CurvePoint> curve(const std::vector<std::vector<Run>>& rungs, Cost c
   return points;
 }
 
-void print_ladders(const Case& c, const Ladder& l) {
+void print_ladders(const Case& c, const std::vector<double>& targets, const Ladder& l) {
   std::printf("  %5s %8s %5s %19s | %6s %8s %6s %8s %5s %19s\n", "spp", "time [s]", "cores",
               "relMSE (+- se)", "target", "mean spp", "passes", "time [s]", "cores",
               "relMSE (+- se)");
@@ -222,7 +244,7 @@ void print_ladders(const Case& c, const Ladder& l) {
     const Mean u = mean_of(l.uniform[i]), a = mean_of(l.adaptive[i]);
     std::printf(
         "  %5d %8.3f %5.2f %9.5f +- %7.5f | %6.3f %8.1f %6.1f %8.3f %5.2f %9.5f +- %7.5f%s\n",
-        c.spp[i], u.seconds, u.cpu_seconds / u.seconds, u.relmse, u.relmse_se, c.targets[i], a.spp,
+        c.spp[i], u.seconds, u.cpu_seconds / u.seconds, u.relmse, u.relmse_se, targets[i], a.spp,
         a.passes, a.seconds, a.cpu_seconds / a.seconds, a.relmse, a.relmse_se,
         a.not_on_target ? "  (max_spp reached!)" : "");
   }
@@ -274,8 +296,9 @@ double run_case(const Case& c, const Settings& s) {
                              : (std::to_string(ref.seconds).substr(0, 6) + " s").c_str());
   if (s.references_only) return NAN;
   measure(*scene, uniform_options(c.spp.front(), 1), ref);  // warm-up: threads, caches
-  const Ladder l = measure_ladders(c, *scene, ref, s);
-  print_ladders(c, l);
+  const std::vector<double> targets = calibrate_targets(c, *scene, s);
+  const Ladder l = measure_ladders(c, targets, *scene, ref, s);
+  print_ladders(c, targets, l);
   double smallest = INFINITY;
   for (const auto& rung : l.uniform) smallest = std::min(smallest, mean_of(rung).relmse);
   for (const auto& rung : l.adaptive) smallest = std::min(smallest, mean_of(rung).relmse);
