@@ -118,8 +118,37 @@ double process_cpu_seconds() {
   return s(u.ru_utime) + s(u.ru_stime);
 }
 
+// The R, G, B sums of a rung's images over the repeats.
+struct ImageSum {
+  std::vector<double> rgb;
+  int count = 0;
+  void add(const LayeredImage& img) {
+    const size_t pixels = size_t(img.width) * size_t(img.height), nc = img.channel_count();
+    rgb.resize(pixels * 3, 0.0);
+    for (size_t p = 0; p < pixels; ++p)
+      for (int c = 0; c < 3; ++c) rgb[p * 3 + size_t(c)] += img.pixels[p * nc + size_t(c)];
+    ++count;
+  }
+};
+
+// How much of a rung's relMSE is bias (nan with one repeat): the repeats'
+// mean image has relMSE bias² + var / R + floor against the reference, the
+// single runs bias² + var + floor on average. Uniform sampling is unbiased,
+// so its figure shows the estimate's noise.
+double bias_share(const ImageSum& sum, double mean_relmse, const Reference& ref) {
+  const double r = sum.count;
+  if (sum.count < 2) return NAN;
+  LayeredImage mean;
+  mean.width = ref.image.width;
+  mean.height = ref.image.height;
+  mean.channels = {"R", "G", "B"};
+  for (double v : sum.rgb) mean.pixels.push_back(float(v / r));
+  const double of_mean = relative_mse(mean, ref.image);
+  return ((r * of_mean - mean_relmse) / (r - 1) - ref.noise_floor) / mean_relmse;
+}
+
 Run measure(const Scene& scene, const RenderOptions& o, const Reference& ref,
-            LayeredImage* keep = nullptr) {
+            ImageSum* sum = nullptr, LayeredImage* keep = nullptr) {
   const double cpu0 = process_cpu_seconds();
   const RenderResult r = render(scene, o);
   Run run;
@@ -129,13 +158,15 @@ Run measure(const Scene& scene, const RenderOptions& o, const Reference& ref,
   run.spp = double(r.stats.camera_samples) / (double(r.image.width) * r.image.height);
   run.passes = r.stats.sampling_passes;
   run.stop = r.stats.stop_reason;
+  if (sum) sum->add(r.image);
   if (keep) *keep = r.image;
   return run;
 }
 
-// [rung][repeat]
+// [rung][repeat], and each rung's image sums.
 struct Ladder {
   std::vector<std::vector<Run>> uniform, adaptive;
+  std::vector<ImageSum> uniform_sum, adaptive_sum;
 };
 
 RenderOptions uniform_options(int spp, uint64_t seed) {
@@ -182,7 +213,8 @@ std::vector<double> calibrate_targets(const Case& c, const Scene& scene, const S
 Ladder measure_ladders(const Case& c, const std::vector<double>& targets, const Scene& scene,
                        const Reference& ref, const Settings& s) {
   const size_t rungs = c.spp.size();
-  Ladder l{std::vector<std::vector<Run>>(rungs), std::vector<std::vector<Run>>(rungs)};
+  Ladder l{std::vector<std::vector<Run>>(rungs), std::vector<std::vector<Run>>(rungs),
+           std::vector<ImageSum>(rungs), std::vector<ImageSum>(rungs)};
   for (int r = 0; r < s.repeats; ++r)
     for (size_t i = 0; i < rungs; ++i) {
       const uint64_t seed = 1000 + 100 * uint64_t(r) + i;
@@ -190,12 +222,18 @@ Ladder measure_ladders(const Case& c, const std::vector<double>& targets, const 
       const RenderOptions a = adaptive_options(targets[i], seed, s.min_spp);
       const bool maps = s.maps && r == 0 && i == rungs / 2;
       LayeredImage ui, ai;
+      const auto run_uniform = [&] {
+        l.uniform[i].push_back(measure(scene, u, ref, &l.uniform_sum[i], maps ? &ui : nullptr));
+      };
+      const auto run_adaptive = [&] {
+        l.adaptive[i].push_back(measure(scene, a, ref, &l.adaptive_sum[i], maps ? &ai : nullptr));
+      };
       if ((r + int(i)) % 2 == 0) {
-        l.uniform[i].push_back(measure(scene, u, ref, maps ? &ui : nullptr));
-        l.adaptive[i].push_back(measure(scene, a, ref, maps ? &ai : nullptr));
+        run_uniform();
+        run_adaptive();
       } else {
-        l.adaptive[i].push_back(measure(scene, a, ref, maps ? &ai : nullptr));
-        l.uniform[i].push_back(measure(scene, u, ref, maps ? &ui : nullptr));
+        run_adaptive();
+        run_uniform();
       }
       if (maps) write_maps(*s.maps / (c.name + "-maps.exr"), ai, ui, ref.image);
     }
@@ -239,16 +277,22 @@ std::vector<CurvePoint> curve(const std::vector<std::vector<Run>>& rungs, Cost c
   return points;
 }
 
-void print_ladders(const Case& c, const std::vector<double>& targets, const Ladder& l) {
-  std::printf("  %5s %8s %5s %19s | %6s %8s %6s %8s %5s %19s\n", "spp", "time [s]", "cores",
-              "relMSE (+- se)", "target", "mean spp", "passes", "time [s]", "cores",
-              "relMSE (+- se)");
+// Per rung: mean wall and CPU time, relMSE (+- its standard error over the
+// repeats) and the bias share of the relMSE.
+void print_ladders(const Case& c, const std::vector<double>& targets, const Ladder& l,
+                   const Reference& ref) {
+  std::printf("  %-44s | %s\n", "uniform", "adaptive");
+  std::printf("  %5s %6s %6s %17s %5s | %6s %6s %5s %6s %6s %17s %5s\n", "spp", "wall", "cpu",
+              "relMSE (+- se)", "bias", "target", "spp", "passes", "wall", "cpu", "relMSE (+- se)",
+              "bias");
   for (size_t i = 0; i < c.spp.size(); ++i) {
     const Mean u = mean_of(l.uniform[i]), a = mean_of(l.adaptive[i]);
     std::printf(
-        "  %5d %8.3f %5.2f %9.5f +- %7.5f | %6.3f %8.1f %6.1f %8.3f %5.2f %9.5f +- %7.5f%s\n",
-        c.spp[i], u.seconds, u.cpu_seconds / u.seconds, u.relmse, u.relmse_se, targets[i], a.spp,
-        a.passes, a.seconds, a.cpu_seconds / a.seconds, a.relmse, a.relmse_se,
+        "  %5d %6.2f %6.2f %8.5f +-%7.5f %5.2f | %6.3f %6.1f %5.1f %6.2f %6.2f %8.5f +-%7.5f "
+        "%5.2f%s\n",
+        c.spp[i], u.seconds, u.cpu_seconds, u.relmse, u.relmse_se,
+        bias_share(l.uniform_sum[i], u.relmse, ref), targets[i], a.spp, a.passes, a.seconds,
+        a.cpu_seconds, a.relmse, a.relmse_se, bias_share(l.adaptive_sum[i], a.relmse, ref),
         a.not_on_target ? "  (max_spp reached!)" : "");
   }
 }
@@ -301,7 +345,7 @@ double run_case(const Case& c, const Settings& s) {
   measure(*scene, uniform_options(c.spp.front(), 1), ref);  // warm-up: threads, caches
   const std::vector<double> targets = calibrate_targets(c, *scene, s);
   const Ladder l = measure_ladders(c, targets, *scene, ref, s);
-  print_ladders(c, targets, l);
+  print_ladders(c, targets, l, ref);
   double smallest = INFINITY;
   for (const auto& rung : l.uniform) smallest = std::min(smallest, mean_of(rung).relmse);
   for (const auto& rung : l.adaptive) smallest = std::min(smallest, mean_of(rung).relmse);
