@@ -415,6 +415,7 @@ Settings parse(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each line as it comes, also into a file
   const Settings s = parse(argc, argv);
   std::vector<std::pair<std::string, double>> gains;
   for (const Case& c : cases(s.quick))
