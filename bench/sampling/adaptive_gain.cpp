@@ -1,9 +1,10 @@
 // Equal-error gain of adaptive sampling (render.noise_target) over uniform
 // sampling, measured side by side in one run. For each scene: a high-spp
 // reference (cached), then uniform renders at a ladder of spp and adaptive
-// renders at a ladder of noise targets, interleaved and repeated; the time
-// each method needs for the same relMSE is interpolated on its log-log
-// (time, relMSE) curve, and the ratio uniform / adaptive is the gain.
+// renders at a ladder of noise targets calibrated to the same relMSE range,
+// interleaved and repeated; the time each method needs for the same relMSE
+// is interpolated on its log-log (time, relMSE) curve, and the ratio
+// uniform / adaptive is the gain.
 //
 //   ./build/bench/vesper_adaptive_bench [--quick] [--scene NAME]... [--repeats N]
 //       [--cache DIR | --no-cache] [--references-only] [--ref-spp N] [--maps DIR] [--min-spp N]
@@ -187,24 +188,32 @@ RenderOptions adaptive_options(double target, uint64_t seed, std::optional<int> 
   return o;
 }
 
-// Noise targets at which adaptive renders take about the uniform ladder's
-// spp, so that both curves span the same cost: pilot renders at targets
-// falling by sqrt(2) until one takes the middle rung's spp, then spp taken as
-// a power of the target through the last two pilots (-2, relMSE ~ 1/spp, when
-// the earlier one sat near min_spp).
-std::vector<double> calibrate_targets(const Case& c, const Scene& scene, const Settings& s) {
-  const double pixels = double(c.width) * c.height, want = c.spp[c.spp.size() / 2];
-  const double floor = 2.0 * s.min_spp.value_or(kDefaultMinSpp);
-  double x0 = 0, spp0 = 0, x1 = 0.8, spp1 = 0;
-  for (int i = 0; i < 16 && spp1 < want; ++i, x1 /= std::sqrt(2.0)) {
-    x0 = x1, spp0 = spp1;
-    spp1 = double(render(scene, adaptive_options(x1, 99, s.min_spp)).stats.camera_samples) / pixels;
+// Noise targets whose adaptive renders span the relMSE range of the uniform
+// ladder, so that the two curves overlap where they are compared (the cost
+// of a target differs by orders of magnitude between scenes and rules): the
+// uniform ladder's two ends are rendered once, then adaptive pilots at
+// targets falling by sqrt(2) until one is below the uniform ladder's lowest
+// error (or takes 4x its top spp); the rungs' errors are spread evenly (in
+// log) over the range and their targets interpolated between the pilots.
+std::vector<double> calibrate_targets(const Case& c, const Scene& scene, const Reference& ref,
+                                      const Settings& s) {
+  const double hi = measure(scene, uniform_options(c.spp.front(), 99), ref).relmse;
+  const double lo = measure(scene, uniform_options(c.spp.back(), 99), ref).relmse;
+  std::vector<CurvePoint> pilots;  // (target, relMSE): a curve with the target for the time
+  for (double x = 0.8; pilots.size() < 24; x /= std::sqrt(2.0)) {
+    const Run r = measure(scene, adaptive_options(x, 99, s.min_spp), ref);
+    pilots.push_back({x, r.relmse});
+    if (r.relmse <= lo || r.spp > 4.0 * c.spp.back()) break;
   }
-  x1 *= std::sqrt(2.0);  // the last pilot's target
-  double power = -2;
-  if (spp0 >= floor) power = std::clamp(std::log(spp1 / spp0) / std::log(x1 / x0), -4.0, -1.0);
   std::vector<double> targets;
-  for (int n : c.spp) targets.push_back(x1 * std::pow(n / spp1, 1 / power));
+  const double rungs = double(c.spp.size());
+  for (size_t i = 0; i < c.spp.size(); ++i) {
+    const double e = hi * std::pow(lo / hi, double(i) / std::max(1.0, rungs - 1));
+    const double x = time_at_error(pilots, e);
+    targets.push_back(std::isfinite(x)            ? x
+                      : e > pilots.front().relmse ? pilots.front().seconds
+                                                  : pilots.back().seconds);
+  }
   return targets;
 }
 
@@ -343,7 +352,7 @@ double run_case(const Case& c, const Settings& s) {
                              : (std::to_string(ref.seconds).substr(0, 6) + " s").c_str());
   if (s.references_only) return NAN;
   measure(*scene, uniform_options(c.spp.front(), 1), ref);  // warm-up: threads, caches
-  const std::vector<double> targets = calibrate_targets(c, *scene, s);
+  const std::vector<double> targets = calibrate_targets(c, *scene, ref, s);
   const Ladder l = measure_ladders(c, targets, *scene, ref, s);
   print_ladders(c, targets, l, ref);
   double smallest = INFINITY;
