@@ -100,7 +100,8 @@ double pixel_variance(ConstPixelSums px, size_t j);
 // (DESIGN.md): sqrt of the mean over R, G, B of var(mean) / (mean² + 0.01),
 // so that the RMS of it over an image estimates sqrt(relMSE). (The form
 // sqrt(var) / (|mean| + 0.01), max over R, G, B, weighs a dark pixel up to
-// 100x more than relMSE does and spent the samples there.) R, G, B must be the first streamed channels.
+// 100x more than relMSE does and spent the samples there.) R, G, B must be the first streamed
+// channels.
 double pixel_relative_error(ConstPixelSums px);
 
 // Writes the pixel's image values (means of the summed channels, derived
