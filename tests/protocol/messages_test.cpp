@@ -132,6 +132,39 @@ TEST(JobMessagesTest, TheRenderBudgetTravelsWhenSetAndIsLeftOutOtherwise) {
   expect_budget_travels(l);
 }
 
+// The render overrides (submit, lease): left out when unset (an old job's
+// messages are unchanged), written when set, read back.
+template <class T>
+void expect_overrides_travel(T m) {
+  const json unset = m;
+  for (const char* key : {"aovs", "layer_variance", "seed", "scale"})
+    EXPECT_FALSE(unset.contains(key)) << key;
+  m.aovs = {"variance", "albedo"};
+  m.layer_variance = true;
+  m.seed = 9007199254740993ull;  // above 2^53: kept exact as an integer
+  m.scale = 0.125;
+  const json j = m;
+  EXPECT_EQ(j.at("aovs"), json::parse(R"(["variance", "albedo"])"));
+  EXPECT_EQ(j.at("layer_variance"), true);
+  EXPECT_EQ(j.at("seed"), 9007199254740993ull);
+  EXPECT_EQ(j.at("scale"), 0.125);
+  const T back = round_trip(m);
+  EXPECT_EQ(back.aovs, m.aovs);
+  EXPECT_TRUE(back.layer_variance);
+  EXPECT_EQ(back.seed, m.seed);
+  EXPECT_EQ(back.scale, 0.125);
+}
+
+TEST(JobMessagesTest, TheRenderOverridesTravelWhenSetAndAreLeftOutOtherwise) {
+  SubmitRequest s;
+  s.scene = "S";
+  s.frames = std::string("1");
+  expect_overrides_travel(s);
+  LeaseResponse l;
+  l.task = {3, 1, 5, 64, 128, 1};
+  expect_overrides_travel(l);
+}
+
 TEST(JobMessagesTest, AReadyFrameCarriesTheNoiseItReached) {
   const FrameInfo f{4, FrameState::Ready, 2, 2, "B", "", 0.0123, 37.25, "noise_target"};
   const json j = f;

@@ -73,8 +73,21 @@ TEST(RenderCommand, PassesTheTasksBudget) {
   EXPECT_EQ(describe_budget(lease(1, 4, 0, 4)), "");
 }
 
+// The job's render overrides go on as `vesper render`'s own flags.
+TEST(RenderCommand, PassesTheJobsRenderOverrides) {
+  protocol::LeaseResponse l = lease(4, 32, 0, 32);
+  l.aovs = {"variance", "albedo"};
+  l.layer_variance = true;
+  l.seed = 11;
+  l.scale = 0.125;
+  EXPECT_EQ(command_line(render_command(l, config(1), "s.json", "out")),
+            "/opt/vesper/bin/vesper render s.json -o out --spp 32 --sample-begin 0 "
+            "--sample-end 32 --frame 4 --aov variance,albedo --layer-variance --seed 11 "
+            "--scale 0.125 --threads 1");
+}
+
 TEST(RenderCommand, LeavesTheSeedToTheSceneAndTheProgressLinesOn) {
-  // The renderer takes the scene's render.seed itself; -q would silence the
+  // Without a seed override the renderer takes the scene's render.seed; -q would silence the
   // progress lines the heartbeat reports.
   const auto argv = render_command(lease(1, 4, 0, 4), config(1), "s.json", "r.exr");
   EXPECT_EQ(std::count(argv.begin(), argv.end(), "--seed"), 0);
