@@ -2,7 +2,7 @@
 // The renders of `vesper regress --local`: each suite scene and frame through
 // a `vesper render`-compatible program (this binary, or --renderer for a
 // wrapper), timed by wall clock and repeated for the timing; and the goldens
-// those renders become with --update-goldens.
+// those renders (or the farm's, regress_farm.h) become with --update-goldens.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -12,11 +12,29 @@
 
 namespace vesper::cli {
 
+// Every (scene, frame) of the suite, with the label its files get: the
+// scene's name, with ".<frame>" when it has several frames.
+struct SuiteFrame {
+  const regress::SuiteScene* scene;
+  int frame;
+  std::string label;
+};
+std::vector<SuiteFrame> suite_frames(const regress::Suite& suite);
+
+// An EXR's own render time (its vesper:render_seconds: rendering only, no
+// process start, scene load or writing); nullopt when it does not say or
+// cannot be read.
+std::optional<double> exr_render_seconds(const std::filesystem::path& exr);
+
 struct SuiteRender {
-  std::string label;  // the scene's name, with ".<frame>" when it has several frames
+  std::string label;  // the SuiteFrame's
   std::filesystem::path exr;
-  std::vector<double> seconds;  // wall time of each repeat
-  std::string error;            // non-empty: the render failed (and why)
+  // Local: wall time of each repeat. Farm: the render's own time (its EXR's
+  // vesper:render_seconds), once; none when the output does not say.
+  std::vector<double> seconds;
+  std::string error;     // non-empty: the render failed (and why)
+  bool on_farm = false;  // rendered by `vesper regress --server`
+  bool reused = false;   // on the farm: every task took an identical earlier result
 };
 
 struct RegressRenderSettings {
@@ -41,8 +59,14 @@ std::filesystem::path golden_sidecar(const std::filesystem::path& dir, const std
 // rename. Throws std::runtime_error naming the file on failure.
 void write_golden(const SuiteRender& render, const std::filesystem::path& dir);
 
-// The golden's render time (the fastest of its repeats) from its sidecar;
-// nullopt if it has none.
-std::optional<double> golden_seconds(const std::filesystem::path& dir, const std::string& label);
+// The golden's render time from its sidecar ("seconds": the fastest of its
+// repeats, or the farm's render time with "timing": "farm"); nullopt if it
+// has none.
+struct GoldenTime {
+  double seconds = 0;
+  bool on_farm = false;  // a farm render's own time, not a local wall time
+};
+std::optional<GoldenTime> golden_seconds(const std::filesystem::path& dir,
+                                         const std::string& label);
 
 }  // namespace vesper::cli

@@ -20,6 +20,15 @@ protocol::LeaseResponse lease(int frame, int spp, int begin, int end) {
   return t;
 }
 
+// The job's render overrides, which go on as `vesper render`'s own flags.
+protocol::LeaseResponse with_overrides(protocol::LeaseResponse l) {
+  l.aovs = {"variance", "albedo"};
+  l.layer_variance = true;
+  l.seed = 11;
+  l.scale = 0.125;
+  return l;
+}
+
 WorkerConfig config(int threads) {
   WorkerConfig c;
   c.vesper_binary = "/opt/vesper/bin/vesper";
@@ -27,8 +36,8 @@ WorkerConfig config(int threads) {
   return c;
 }
 
-// A whole frame renders an EXR; a sample range a partial (--partial), and the
-// worker's --threads are passed on.
+// A whole frame renders an EXR; a sample range a partial (--partial); the
+// job's render overrides and the worker's --threads are passed on.
 TEST(RenderCommand, FollowsTheTaskAndTheWorkerConfig) {
   struct Case {
     protocol::LeaseResponse lease;
@@ -42,6 +51,9 @@ TEST(RenderCommand, FollowsTheTaskAndTheWorkerConfig) {
       {lease(3, 16, 4, 8), 2, ".vpartial",
        "/opt/vesper/bin/vesper render s.json -o out --spp 16 --sample-begin 4 --sample-end 8 "
        "--frame 3 --partial --threads 2"},
+      {with_overrides(lease(4, 32, 0, 32)), 1, ".exr",
+       "/opt/vesper/bin/vesper render s.json -o out --spp 32 --sample-begin 0 --sample-end 32 "
+       "--frame 4 --aov variance,albedo --layer-variance --seed 11 --scale 0.125 --threads 1"},
   };
   for (const Case& c : cases) {
     EXPECT_EQ(render_output_extension(c.lease), c.extension);
@@ -71,19 +83,6 @@ TEST(RenderCommand, PassesTheTasksBudget) {
   EXPECT_EQ(render_output_extension(whole), ".exr");
   EXPECT_EQ(describe_budget(split), ", noise target 0.02 (min spp 16), time limit 7.5 s");
   EXPECT_EQ(describe_budget(lease(1, 4, 0, 4)), "");
-}
-
-// The job's render overrides go on as `vesper render`'s own flags.
-TEST(RenderCommand, PassesTheJobsRenderOverrides) {
-  protocol::LeaseResponse l = lease(4, 32, 0, 32);
-  l.aovs = {"variance", "albedo"};
-  l.layer_variance = true;
-  l.seed = 11;
-  l.scale = 0.125;
-  EXPECT_EQ(command_line(render_command(l, config(1), "s.json", "out")),
-            "/opt/vesper/bin/vesper render s.json -o out --spp 32 --sample-begin 0 "
-            "--sample-end 32 --frame 4 --aov variance,albedo --layer-variance --seed 11 "
-            "--scale 0.125 --threads 1");
 }
 
 TEST(RenderCommand, LeavesTheSeedToTheSceneAndTheProgressLinesOn) {
