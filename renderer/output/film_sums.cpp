@@ -141,13 +141,12 @@ double pixel_variance(ConstPixelSums px, size_t j) {
 double pixel_relative_error(ConstPixelSums px) {
   const int64_t n = sample_count(px.counts);
   if (n == 0) return INFINITY;
-  double worst = 0;
+  double sum = 0;
   for (size_t c = 0; c < 3; ++c) {
     const double mean = stream_total(px, c) / double(n);
-    worst =
-        std::max(worst, std::sqrt(pixel_variance(px, c)) / (std::abs(mean) + kRelativeErrorOffset));
+    sum += pixel_variance(px, c) / (mean * mean + kRelativeErrorOffset);
   }
-  return worst;
+  return std::sqrt(sum / 3);
 }
 
 void resolve_pixel(ConstPixelSums px, size_t channels, const DerivedChannels& derived, float* out) {

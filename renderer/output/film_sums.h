@@ -28,8 +28,8 @@ inline constexpr char kVarianceLayer[] = "variance";
 inline constexpr std::array<const char*, 3> kVarianceChannels{"variance.R", "variance.G",
                                                               "variance.B"};
 inline constexpr char kSppChannel[] = "spp";
-// Added to the mean in the relative error, so that black pixels do not need
-// infinitely many samples (the same 0.01 as relMSE's r² + 0.01).
+// Added to the squared mean in the relative error, so that black pixels do
+// not need infinitely many samples (relMSE's r² + 0.01).
 inline constexpr double kRelativeErrorOffset = 0.01;
 
 // The channel whose variance a derived channel holds ("variance.R" -> "R",
@@ -96,8 +96,12 @@ int64_t sample_count(const uint32_t* counts);
 // stream means. 0 with fewer than two non-empty streams.
 double pixel_variance(ConstPixelSums px, size_t j);
 
-// The pixel's estimated relative error of the mean: max over R, G, B of
-// sqrt(var(mean)) / (|mean| + 0.01). R, G, B must be the first streamed channels.
+// The pixel's estimated relative error of the mean, in relMSE's own terms
+// (DESIGN.md): sqrt of the mean over R, G, B of var(mean) / (mean² + 0.01),
+// so that the RMS of it over an image estimates sqrt(relMSE). (The form
+// sqrt(var) / (|mean| + 0.01), max over R, G, B, weighs a dark pixel up to
+// 100x more than relMSE does and spent the samples there.) R, G, B must be the first streamed
+// channels.
 double pixel_relative_error(ConstPixelSums px);
 
 // Writes the pixel's image values (means of the summed channels, derived

@@ -35,9 +35,8 @@ double meta_number(const LayeredImage& img, const char* key) {
   return std::stod(img.metadata.at(key));
 }
 
-// A render to noise target X has each pixel's estimated relative error
-// sqrt(var)/(|mean| + 0.01) at most X, so its relMSE (mean of squared error
-// over r² + 0.01, which for r in [0, 1] is at most 1.01 (r + 0.01)²...) is
+// A render to noise target X has each pixel's estimated relative error (the
+// square root of relMSE's own per-pixel term) at most X, so its relMSE is
 // about X² or less; 1.5 X² leaves room for the estimates' own noise and the
 // reference's. And it must not be far below X² either: then it oversampled.
 void expect_noise_target_met(const SceneDescription& d, double target, const char* label) {
