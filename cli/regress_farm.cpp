@@ -17,8 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A suite scene as a farm job: what render_argv (regress_render.cpp) passes
-// to a local `vesper render`, as job settings.
+// A suite scene as a farm job: the render --local runs, as job settings.
 JobRequest scene_job(const regress::SuiteScene& s, const FarmBatchSettings& settings) {
   JobRequest r;
   r.scene = s.scene;
@@ -26,10 +25,7 @@ JobRequest scene_job(const regress::SuiteScene& s, const FarmBatchSettings& sett
   r.frames = s.frames;
   r.spp = s.spp.value_or(0);  // 0: the scene's render.spp (the most, with a noise target)
   r.sampling.budget.noise_target = s.noise_target;
-  r.overrides.aovs = {"variance"};
-  r.overrides.layer_variance = true;
-  r.overrides.seed = settings.seed;
-  r.overrides.scale = s.scale;
+  r.overrides = suite_render_overrides(s, settings.seed);
   return r;
 }
 

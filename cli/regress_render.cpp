@@ -10,6 +10,7 @@
 #include "compositor/histogram.h"
 #include "compositor/layer_mix.h"
 #include "jobs/frame_range.h"
+#include "jobs/render_budget.h"
 #include "process/child_process.h"
 #include "renderer/output/exr_io.h"
 #include "renderer/output/metadata_keys.h"
@@ -21,34 +22,34 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> render_argv(const regress::SuiteScene& scene, int frame,
                                      const fs::path& out, const RegressRenderSettings& s) {
-  std::vector<std::string> argv{s.renderer.string(),
-                                "render",
-                                scene.scene.string(),
-                                "-o",
-                                out.string(),
-                                "--aov",
-                                "variance",
-                                "--layer-variance",
-                                "--frame",
-                                std::to_string(frame),
-                                "-q"};
-  if (scene.spp) argv.insert(argv.end(), {"--spp", std::to_string(*scene.spp)});
-  if (scene.noise_target) {
-    char target[32];
-    std::snprintf(target, sizeof target, "%.17g", *scene.noise_target);
-    argv.insert(argv.end(), {"--noise-target", target});
-  }
-  if (scene.scale) {
-    char scale[32];
-    std::snprintf(scale, sizeof scale, "%.17g", *scene.scale);
-    argv.insert(argv.end(), {"--scale", scale});
-  }
-  if (s.seed) argv.insert(argv.end(), {"--seed", std::to_string(*s.seed)});
-  if (s.threads) argv.insert(argv.end(), {"--threads", std::to_string(*s.threads)});
+  std::vector<std::string> argv{s.renderer.string(), "render",  scene.scene.string(),  "-o",
+                                out.string(),        "--frame", std::to_string(frame), "-q"};
+  auto add = [&argv](const char* flag, const std::string& value) {
+    argv.push_back(flag);
+    argv.push_back(value);
+  };
+  const RenderOverrides o = suite_render_overrides(scene, s.seed);
+  add("--aov", join_aovs(o.aovs));
+  if (o.layer_variance) argv.push_back("--layer-variance");
+  if (o.scale) add("--scale", exact_text(*o.scale));
+  if (o.seed) add("--seed", std::to_string(*o.seed));
+  if (scene.spp) add("--spp", std::to_string(*scene.spp));
+  if (scene.noise_target) add("--noise-target", exact_text(*scene.noise_target));
+  if (s.threads) add("--threads", std::to_string(*s.threads));
   return argv;
 }
 
 }  // namespace
+
+RenderOverrides suite_render_overrides(const regress::SuiteScene& scene,
+                                       std::optional<unsigned long long> seed) {
+  RenderOverrides o;
+  o.aovs = {"variance"};  // the beauty's variance, and every layer's below
+  o.layer_variance = true;
+  o.seed = seed;
+  o.scale = scene.scale;
+  return o;
+}
 
 SuiteRender render_suite_frame(const regress::SuiteScene& scene, int frame,
                                const std::string& label, const RegressRenderSettings& settings) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "jobs/render_overrides.h"
 #include "regress/suite.h"
 
 namespace vesper::cli {
@@ -45,8 +46,15 @@ struct RegressRenderSettings {
   int repeats = 1;
 };
 
-// Renders `scene` at `frame` (`label` names the output file) with the
-// variance of the beauty and every layer (the noise model of the comparison).
+// What every render of `scene` asks beyond the scene, locally as `vesper
+// render` flags and on the farm as its job's render overrides, so that both
+// render the same: the variance of the beauty and of every layer (the
+// comparison's noise model), the suite's film scale and --seed.
+RenderOverrides suite_render_overrides(const regress::SuiteScene& scene,
+                                       std::optional<unsigned long long> seed);
+
+// Renders `scene` at `frame` (`label` names the output file) with
+// suite_render_overrides.
 SuiteRender render_suite_frame(const regress::SuiteScene& scene, int frame,
                                const std::string& label, const RegressRenderSettings& settings);
 
