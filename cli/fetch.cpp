@@ -28,6 +28,17 @@ std::string job_file_stem(const std::string& name, long long job) {
   return stem.empty() ? "job-" + std::to_string(job) : stem;
 }
 
+void download_frame(FarmClient& client, long long job, const protocol::FrameInfo& frame,
+                    const std::filesystem::path& file) {
+  client.download(protocol::frame_path(job, frame.frame), file);
+  if (frame.blob.empty()) return;
+  const auto sha = sha256_file(file);
+  if (!sha || *sha != frame.blob) {
+    std::filesystem::remove(file);
+    throw FarmClientError(file.string() + ": downloaded frame does not match its hash");
+  }
+}
+
 FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesystem::path& dir) {
   const std::string name =
       client.get_json(protocol::job_path(job)).get<protocol::JobSummary>().name;
@@ -42,14 +53,7 @@ FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesys
       continue;
     }
     const std::filesystem::path file = dir / fmt::format("{}.{:04d}.exr", out.stem, f.frame);
-    client.download(protocol::frame_path(job, f.frame), file);
-    if (!f.blob.empty()) {
-      const auto sha = sha256_file(file);
-      if (!sha || *sha != f.blob) {
-        std::filesystem::remove(file);
-        throw FarmClientError(file.string() + ": downloaded frame does not match its hash");
-      }
-    }
+    download_frame(client, job, f, file);
     out.written.push_back(file);
   }
   return out;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli/farm_client.h"
+#include "protocol/job_messages.h"
 
 namespace vesper::cli {
 
@@ -21,6 +22,11 @@ struct FetchedFrames {
 // becomes U+FFFD, it is cut to 200 bytes, and an empty name is "job-<id>".
 // Nothing derived from it can leave the folder or change the frame pattern.
 std::string job_file_stem(const std::string& name, long long job);
+
+// Downloads ready `frame` of `job` to `file` (whole or not at all), checked
+// against its blob's sha256. Throws FarmClientError.
+void download_frame(FarmClient& client, long long job, const protocol::FrameInfo& frame,
+                    const std::filesystem::path& file);
 
 // Writes every ready frame of `job` into `dir` (created if needed); each file
 // appears complete or not at all, and is checked against its blob's sha256.

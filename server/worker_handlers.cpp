@@ -90,6 +90,10 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
   out.noise_target = l->budget.noise_target;
   out.min_spp = l->budget.min_spp;
   out.time_limit = l->budget.time_limit;
+  out.aovs = l->overrides.aovs;
+  out.layer_variance = l->overrides.layer_variance;
+  out.seed = l->overrides.seed;
+  out.scale = l->overrides.scale;
   out.task_timeout = l->task_timeout;
   if (!out.task_timeout && d.default_task_timeout > 0) out.task_timeout = d.default_task_timeout;
   return json_response(200, out);
