@@ -32,6 +32,8 @@ struct RenderCommandOptions {
   // Write a partial render (docs/partial-format.md): the exact per-pixel
   // sample sums of [sample_begin, sample_end), which `vesper merge` combines.
   bool partial = false;
+  // Refuse scene files outside the scene's directory (farm tasks).
+  bool scene_dir_only = false;
   bool quiet = false;
 };
 int run_render(const RenderCommandOptions& options);

@@ -16,6 +16,7 @@ struct FarmServerSettings {
   int blocklist_threshold = 3;
   int max_blob_mib = 64;
   int threads = 16;
+  double task_timeout = 86400;  // the farm default for jobs without one; 0 = none
 };
 
 struct FarmWorkerSettings {
@@ -37,6 +38,7 @@ struct FarmJobSettings {
   double noise_target = 0;
   int min_spp = 0, max_spp = 0;
   double time_limit = 0;
+  double task_timeout = 0;  // seconds per task render; 0 = the server's default
 };
 
 struct FarmUpSettings {

@@ -16,6 +16,7 @@ ServerConfig server_config(const FarmSettings& s) {
   c.blocklist_threshold = s.server.blocklist_threshold;
   c.max_blob_bytes = std::size_t(s.server.max_blob_mib) << 20;
   c.threads = s.server.threads;
+  c.task_timeout = s.server.task_timeout;
   return c;
 }
 

@@ -8,7 +8,7 @@
 #include "cli/commands.h"
 #include "cli/fetch.h"
 #include "cli/job_watch.h"
-#include "common/sha256.h"
+#include "common/control_characters.h"
 #include "protocol/job_messages.h"
 #include "protocol/paths.h"
 
@@ -47,49 +47,30 @@ void print_frame_noise(const std::vector<protocol::FrameInfo>& frames) {
     std::printf("%8d %14s %9s  %s\n", f.frame,
                 f.noise_reached ? fmt::format("{:.4g}", *f.noise_reached).c_str() : "-",
                 f.spp_mean ? fmt::format("{:.1f}", *f.spp_mean).c_str() : "-",
-                f.stop_reason.empty() ? "-" : f.stop_reason.c_str());
+                f.stop_reason.empty() ? "-" : escape_control_characters(f.stop_reason).c_str());
   }
 }
 
-// worker id -> name, for tables people read.
+// worker id -> name, for tables people read (escaped: names come from
+// whoever holds a worker token, and an old server did not refuse ESC or CR).
 std::map<std::string, std::string> worker_names(FarmClient& c) {
   std::map<std::string, std::string> names;
   for (const auto& w : c.get_json(kWorkersPath).get<protocol::WorkerList>().workers)
-    names[w.worker_id] = w.name;
+    names[w.worker_id] = escape_control_characters(w.name);
   return names;
 }
 
+// A failure log for a terminal: line by line, each line's control characters
+// escaped (a render's stderr may carry anything).
+std::string printable_log(const std::string& log) {
+  std::string out;
+  size_t begin = 0;
+  for (size_t end; (end = log.find('\n', begin)) != std::string::npos; begin = end + 1)
+    out += escape_control_characters(log.substr(begin, end - begin)) + "\n";
+  return out + escape_control_characters(log.substr(begin));
+}
+
 }  // namespace
-
-void download_frame(FarmClient& client, long long job, const protocol::FrameInfo& frame,
-                    const std::filesystem::path& file) {
-  client.download(protocol::frame_path(job, frame.frame), file);
-  if (frame.blob.empty()) return;
-  const auto sha = sha256_file(file);
-  if (!sha || *sha != frame.blob) {
-    std::filesystem::remove(file);
-    throw FarmClientError(file.string() + ": downloaded frame does not match its hash");
-  }
-}
-
-FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesystem::path& dir) {
-  const std::string name =
-      client.get_json(protocol::job_path(job)).get<protocol::JobSummary>().name;
-  const protocol::FrameList frames = wait_for_merges(client, job);
-  std::filesystem::create_directories(dir);
-  FetchedFrames out;
-  out.pattern = (dir / (name + ".####.exr")).string();
-  for (const protocol::FrameInfo& f : frames.frames) {
-    if (f.state != protocol::FrameState::Ready) {
-      out.missing.push_back(f.frame);
-      continue;
-    }
-    const std::filesystem::path file = dir / fmt::format("{}.{:04d}.exr", name, f.frame);
-    download_frame(client, job, f, file);
-    out.written.push_back(file);
-  }
-  return out;
-}
 
 int run_status(const JobCommandOptions& o) {
   return with_client(o, [&](FarmClient& c) {
@@ -114,7 +95,7 @@ int run_status(const JobCommandOptions& o) {
     const auto names = worker_names(c);
     auto name_of = [&](const std::string& id) {
       const auto it = names.find(id);
-      return it == names.end() ? id : it->second;
+      return it == names.end() ? escape_control_characters(id) : it->second;
     };
     for (const auto& b : j.blocked_workers)
       std::printf("blocked for this job: %s\n", name_of(b).c_str());
@@ -172,8 +153,8 @@ int run_workers(const JobCommandOptions& o) {
     else
       std::printf("%-24s %-34s %12s %7s\n", "name", "worker id", "last seen", "leases");
     for (const protocol::WorkerInfo& w : all.workers)
-      std::printf("%-24s %-34s %10.0fs ago %7d\n", w.name.c_str(), w.worker_id.c_str(),
-                  all.now - w.last_seen, w.leases);
+      std::printf("%-24s %-34s %10.0fs ago %7d\n", escape_control_characters(w.name).c_str(),
+                  escape_control_characters(w.worker_id).c_str(), all.now - w.last_seen, w.leases);
     return 0;
   });
 }
@@ -195,7 +176,7 @@ int run_logs(const JobCommandOptions& o) {
       std::printf("=== task %lld (frame %d, samples [%d, %d)), %s after %d attempts ===\n%s\n",
                   static_cast<long long>(t.id), t.frame, t.sample_begin, t.sample_end,
                   t.state.c_str(), t.attempts,
-                  c.get_text(protocol::task_log_path(*o.job, t.id)).c_str());
+                  printable_log(c.get_text(protocol::task_log_path(*o.job, t.id))).c_str());
       ++shown;
     }
     if (shown == 0) spdlog::info("job {}: no task has a failure log", *o.job);

@@ -9,14 +9,16 @@
 #include <thread>
 
 #include "cli/progress.h"
+#include "common/control_characters.h"
 #include "protocol/paths.h"
 
 namespace vesper::cli {
 
 std::string describe_job(const protocol::JobSummary& j) {
   const protocol::JobCounts& c = j.counts;
-  std::string s = "job " + std::to_string(j.id) + " '" + j.name + "': " + j.state + ", " +
-                  std::to_string(c.done) + "/" + std::to_string(j.total) + " tasks done";
+  std::string s = "job " + std::to_string(j.id) + " '" + escape_control_characters(j.name) +
+                  "': " + j.state + ", " + std::to_string(c.done) + "/" + std::to_string(j.total) +
+                  " tasks done";
   const std::pair<int, const char*> others[] = {{c.leased, "leased"},
                                                 {c.queued, "queued"},
                                                 {c.failed, "failed"},

@@ -128,6 +128,9 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
                 "frames' (same scene, same seed); fills #### in -o");
   r->add_flag("--partial", o->partial,
               "Write a partial render (exact sample sums) for `vesper merge` instead of an EXR");
+  r->add_flag("--scene-dir-only", o->scene_dir_only,
+              "Refuse files the scene references outside its directory (absolute paths, '..'): "
+              "what a farm worker renders, since the scene is not its own");
   add_quiet(r, &o->quiet);
   dispatch.on(r, [o] { return run_render(*o); });
 

@@ -5,7 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "common/json_parse.h"
 #include "common/sha256.h"
+#include "jobs/scene_references.h"
 
 namespace vesper::cli {
 namespace {
@@ -31,32 +33,16 @@ struct Packer {
     by_file.emplace(canonical, a);
     return a.name;
   }
-
-  // Every "file": "<string>" anywhere in the scene is a path to an input.
-  void walk(nlohmann::json& node, const std::string& json_path) {
-    if (node.is_object()) {
-      for (auto& [key, value] : node.items()) {
-        const std::string child = json_path + "/" + key;
-        if (key == "file" && value.is_string())
-          value = asset_for(value.get<std::string>(), child);
-        else
-          walk(value, child);
-      }
-    } else if (node.is_array()) {
-      for (size_t i = 0; i < node.size(); ++i) walk(node[i], json_path + "/" + std::to_string(i));
-    }
-  }
 };
 
 }  // namespace
 
 PackedScene pack_scene(const std::filesystem::path& scene_file) {
-  std::ifstream in(scene_file);
-  if (!in) throw std::runtime_error(scene_file.string() + ": cannot read");
-  nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  if (doc.is_discarded()) throw std::runtime_error(scene_file.string() + ": not valid JSON");
+  nlohmann::json doc = read_json_file(scene_file, "the scene file");
   Packer p{std::filesystem::absolute(scene_file).parent_path(), scene_file.string(), {}};
-  p.walk(doc, "");
+  // Every "file" of the scene is an input: packed, and named by its asset.
+  for (const FileReference& r : scene_file_references(doc))
+    doc[nlohmann::json::json_pointer(r.json_path)] = p.asset_for(r.file, r.json_path);
   PackedScene out;
   out.json = doc.dump(2) + "\n";
   for (auto& [file, asset] : p.by_file) out.assets.push_back(asset);

@@ -27,6 +27,7 @@ struct JobRequest {
   // AOVs, per-layer variance, seed, film scale of every render (docs/farm.md,
   // "Render overrides"); unset = as the scene says.
   RenderOverrides overrides;
+  std::optional<double> task_timeout;  // seconds per task render; unset = the server's default
 };
 
 // A job request that does not fit together (min spp above max spp, a min spp

@@ -65,6 +65,7 @@ JobRequest job_request_defaults(const FarmSettings& s, const std::filesystem::pa
   if (s.job.min_spp > 0) b.budget.min_spp = s.job.min_spp;
   if (s.job.max_spp > 0) b.max_spp = s.job.max_spp;
   if (s.job.time_limit > 0) b.budget.time_limit = s.job.time_limit;
+  if (s.job.task_timeout > 0) r.task_timeout = s.job.task_timeout;
   return r;
 }
 
@@ -76,7 +77,8 @@ JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
   namespace f = protocol::field;
   root.allow_keys({"format", f::kScene, f::kName, f::kFrames, f::kSpp, f::kSamplesPerTask,
                    f::kPriority, f::kMaxAttempts, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
-                   f::kTimeLimit, f::kAovs, f::kLayerVariance, f::kSeed, f::kScale});
+                   f::kTimeLimit, f::kAovs, f::kLayerVariance, f::kSeed, f::kScale,
+                   f::kTaskTimeout});
   const std::filesystem::path scene = root.string("scene");
   r.scene = scene.is_relative() ? file.parent_path() / scene : scene;
   r.name = root.has("name") ? root.string("name") : default_job_name(r.scene);
@@ -93,6 +95,8 @@ JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
   if (keys.max_spp) b.max_spp = keys.max_spp;
   if (keys.budget.time_limit) b.budget.time_limit = keys.budget.time_limit;
   r.overrides = read_render_overrides(root);
+  if (const auto t = root.optional_child(f::kTaskTimeout))
+    r.task_timeout = t->as_number(Range::left_open(0, 30 * 86400));
   return r;
 }
 
@@ -165,6 +169,7 @@ Submitted submit_job(FarmClient& client, const JobRequest& request, bool dry_run
   body.layer_variance = r.overrides.layer_variance;
   body.seed = r.overrides.seed;
   body.scale = r.overrides.scale;
+  body.task_timeout = r.task_timeout;
 
   std::string path(protocol::paths::kJobs);
   if (dry_run) path += "?" + std::string(protocol::kDryRunParam) + "=1";

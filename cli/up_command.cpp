@@ -18,6 +18,8 @@
 #include "cli/job_watch.h"
 #include "cli/parent_watch.h"
 #include "cli/submit.h"
+#include "common/control_characters.h"
+#include "common/json_parse.h"
 #include "compositor/comp_run.h"
 #include "compositor/recipe.h"
 #include "jobs/frame_range.h"
@@ -52,11 +54,10 @@ std::filesystem::path find_demo_scene() {
 
 // Rewrites a composite recipe to read the fetched frames and write beside them.
 CompRecipe recipe_for_frames(const std::filesystem::path& recipe_file, const FetchedFrames& frames,
-                             const std::filesystem::path& out_dir, const std::string& name) {
-  std::ifstream in(recipe_file);
-  nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  if (doc.is_discarded() || !doc.is_object() || !doc.contains("inputs") ||
-      !doc["inputs"].is_object() || doc["inputs"].size() != 1)
+                             const std::filesystem::path& out_dir) {
+  nlohmann::json doc = read_json_file(recipe_file, "the composite recipe");
+  if (!doc.is_object() || !doc.contains("inputs") || !doc["inputs"].is_object() ||
+      doc["inputs"].size() != 1)
     throw std::runtime_error(recipe_file.string() +
                              ": /inputs: `vesper up` composites recipes with exactly one input");
   const bool sequence = frames.written.size() > 1;
@@ -64,7 +65,7 @@ CompRecipe recipe_for_frames(const std::filesystem::path& recipe_file, const Fet
   doc["inputs"].begin().value() = sequence
                                       ? std::filesystem::absolute(frames.pattern).string()
                                       : std::filesystem::absolute(frames.written.front()).string();
-  const std::string stem = name + (sequence ? ".####" : "");
+  const std::string stem = frames.stem + (sequence ? ".####" : "");
   nlohmann::json outputs = doc.value("outputs", nlohmann::json::object());
   const std::map<std::string, std::string> suffix = {{"image", ".comp"},
                                                      {"exr", ".comp"},
@@ -179,7 +180,7 @@ void cancel_leftover_jobs(FarmClient& client, const std::filesystem::path& data_
       client.post_json(protocol::job_action_path(j.id, protocol::JobAction::Cancel),
                        nlohmann::json::object());
       spdlog::warn("canceled job {} '{}' left unfinished by an earlier `vesper up` in {}", j.id,
-                   j.name, data_dir.string());
+                   escape_control_characters(j.name), data_dir.string());
     }
 }
 
@@ -219,7 +220,7 @@ std::vector<std::filesystem::path> composite(const UpCommandOptions& o, const Up
   const std::filesystem::path recipe =
       o.comp ? std::filesystem::path(*o.comp) : plan.request.scene.parent_path() / "comp.json";
   if (o.no_comp || fetched.written.empty() || !std::filesystem::exists(recipe)) return written;
-  const CompRecipe r = recipe_for_frames(recipe, fetched, plan.out_dir, plan.request.name);
+  const CompRecipe r = recipe_for_frames(recipe, fetched, plan.out_dir);
   const CompReport report = run_comp(r);
   for (const auto& f : report.frames)
     for (const auto& p : {f.image, f.exr, f.histogram, f.histogram_plot})

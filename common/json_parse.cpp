@@ -8,22 +8,26 @@
 
 #include "common/json_error.h"
 #include "common/json_reader.h"
+#include "common/utf8.h"
 
 namespace vesper {
 namespace {
 
-// The parse callback that rejects a key seen twice in one object.
-class DuplicateKeyCheck {
+// The parse callback that rejects a key seen twice in one object and
+// nesting deeper than kMaxJsonDepth.
+class StructureCheck {
  public:
-  explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
+  explicit StructureCheck(std::string file) : file_(std::move(file)) {}
   bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
     switch (event) {
       case E::object_start:
-        stack_.push_back({false, 0, {}, {}});
-        break;
       case E::array_start:
-        stack_.push_back({true, 0, {}, {}});
+        if (stack_.size() >= size_t(kMaxJsonDepth))
+          throw JsonError(
+              file_, path(),
+              "arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        stack_.push_back({event == E::array_start, 0, {}, {}});
         break;
       case E::key: {
         Frame& top = stack_.back();
@@ -72,7 +76,8 @@ std::string at_line_column(const std::string& text, size_t offset) {
   return "line " + std::to_string(line) + ", column " + std::to_string(end - line_start + 1);
 }
 
-// nlohmann's what() minus its "[json.exception.x.N] ... column C: " prefix.
+// nlohmann's what() minus its "[json.exception.x.N] ... column C: " prefix;
+// it quotes what it last read, which may be bytes that are not UTF-8.
 std::string nlohmann_detail(const nlohmann::json::exception& e) {
   std::string detail = e.what();
   if (const size_t bracket = detail.find("] "); bracket != std::string::npos) {
@@ -83,14 +88,14 @@ std::string nlohmann_detail(const nlohmann::json::exception& e) {
       detail = detail.substr(colon + 2);
     }
   }
-  return detail;
+  return utf8_safe(detail);
 }
 
 }  // namespace
 
 nlohmann::json parse_json(const std::string& text, const std::string& file) {
   try {
-    return nlohmann::json::parse(text, DuplicateKeyCheck(file));
+    return nlohmann::json::parse(text, StructureCheck(file));
   } catch (const nlohmann::json::parse_error& e) {
     throw JsonError(file, "",
                     "invalid JSON at " + at_line_column(text, e.byte > 0 ? e.byte - 1 : 0) + ": " +

@@ -185,6 +185,20 @@ void write_graded_exr(const RgbaImage& canvas, const LayeredImage& first,
   }
 }
 
+// Refuses a graded composite holding NaN or infinity (extreme but accepted
+// grades and gains on bright pixels, or such values in an input): it would
+// be written into the EXR and hide in the display image as black.
+void expect_finite(const RgbaImage& graded, const std::string& recipe_label,
+                   std::optional<long> frame) {
+  size_t bad = 0;
+  for (float v : graded.pixels) bad += !std::isfinite(v);
+  if (bad == 0) return;
+  throw CompError(recipe_label + ": " + (frame ? "frame " + std::to_string(*frame) + ": " : "") +
+                  std::to_string(bad) +
+                  " values of the mixed and graded image are not finite (NaN or infinity): "
+                  "lower the gains or the grade (or check the inputs); nothing was written");
+}
+
 // One frame: read, mix, grade, display; every output written, then committed.
 CompFrameReport comp_frame(const CompRecipe& recipe, const Grader& grader,
                            const fs::path& histogram_pattern, std::optional<long> frame) {
@@ -195,6 +209,7 @@ CompFrameReport comp_frame(const CompRecipe& recipe, const Grader& grader,
   RgbaImage canvas = mix_frame(recipe, inputs);
   FrameFiles files;
   grader.apply_grade(canvas);
+  expect_finite(canvas, recipe.label, frame);
   if (!out.exr.empty()) {
     fr.exr = at_frame(out.exr, frame);
     write_graded_exr(canvas, inputs.images[recipe.layers.front().input], recipe.label,

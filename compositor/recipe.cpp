@@ -21,6 +21,15 @@ namespace {
 constexpr std::string_view kFormat = "vesper-comp/1";
 constexpr std::string_view kModes[] = {"add", "over"};
 
+// Bounds of the multipliers and the grade. Generous for any real look, but
+// small enough that a float image does not overflow at the first step: a CDL
+// power or saturation of 3.4e38 turned every pixel into NaN or infinity.
+const Range kGain = Range::closed(-1e6, 1e6);  // layer gain and tint
+const Range kCdlSlope = Range::closed(0, 1e3);
+const Range kCdlOffset = Range::closed(-1e3, 1e3);
+const Range kCdlPower = Range::left_open(0, 100);
+const Range kCdlSaturation = Range::closed(0, 100);
+
 // The first run of '#' in the file name: (position, length), or length 0.
 std::pair<size_t, size_t> find_pattern(const std::string& name) {
   const size_t p = name.find('#');
@@ -155,8 +164,8 @@ CompLayer parse_layer(JsonReader l, std::span<const std::string_view> input_name
     l.fail("missing key \"layer\" (the name of a layer in the input, e.g. \"beauty\")");
   cl.op.layer = l.child("layer").as_string();
   if (l.has("input")) cl.input = l.enumeration("input", input_names);
-  cl.op.gain = float(l.number("gain", 1.0, Range::any()));
-  cl.op.tint = read_rgb(l, "tint", Rgb(1.f), Range::any());
+  cl.op.gain = float(l.number("gain", 1.0, kGain));
+  cl.op.tint = read_rgb(l, "tint", Rgb(1.f), kGain);
   cl.op.exposure = float(l.number("exposure", 0.0, Range::closed(-64, 64)));
   cl.op.mode = l.enumeration("mode", 0, kModes) == 0 ? BlendMode::Add : BlendMode::Over;
   l.finish();
@@ -186,10 +195,10 @@ Cdl parse_cdl(JsonReader cdl) {
   cdl.expect_object();
   cdl.allow_keys({"slope", "offset", "power", "saturation"});
   Cdl c;
-  c.slope = read_rgb(cdl, "slope", c.slope, Range::non_negative());
-  c.offset = read_rgb(cdl, "offset", c.offset, Range::any());
-  c.power = read_rgb(cdl, "power", c.power, Range::positive());
-  c.saturation = float(cdl.number("saturation", 1.0, Range::non_negative()));
+  c.slope = read_rgb(cdl, "slope", c.slope, kCdlSlope);
+  c.offset = read_rgb(cdl, "offset", c.offset, kCdlOffset);
+  c.power = read_rgb(cdl, "power", c.power, kCdlPower);
+  c.saturation = float(cdl.number("saturation", 1.0, kCdlSaturation));
   return c;
 }
 

@@ -1,5 +1,7 @@
 #include "jobs/job.h"
 
+#include "common/control_characters.h"
+
 namespace vesper {
 
 const char* to_string(TaskState s) {
@@ -35,7 +37,7 @@ std::string asset_name_problem(std::string_view name) {
   if (name.empty()) return "expected a non-empty relative path";
   if (name.size() > kMaxAssetNameLength)
     return "longer than " + std::to_string(kMaxAssetNameLength) + " characters";
-  if (name.find('\0') != std::string_view::npos) return "contains a NUL character";
+  if (std::string why = control_character_problem(name); !why.empty()) return why;
   if (name.find('\\') != std::string_view::npos)
     return "contains a backslash (use '/' to separate directories)";
   if (name.front() == '/') return "is an absolute path (expected a path relative to the scene)";

@@ -26,8 +26,8 @@ struct Asset {
 // Why `name` is not an acceptable asset name, or empty when it is: a
 // non-empty relative path of at most kMaxAssetNameLength bytes, made of
 // '/'-separated segments that are neither empty, "." nor ".."; no backslash,
-// no NUL, not absolute. Checked by the server on submit and again by the
-// worker before a name becomes a path.
+// no control character (NUL, ESC, newline, ...), not absolute. Checked by the server on submit and
+// again by the worker before a name becomes a path.
 constexpr size_t kMaxAssetNameLength = 255;
 std::string asset_name_problem(std::string_view name);
 
@@ -42,6 +42,9 @@ struct JobSpec {
   std::vector<Asset> assets;  // files the scene references, in submission order
   RenderBudget budget;        // noise target, min spp, time limit of each frame
   RenderOverrides overrides;  // AOVs, per-layer variance, seed, film scale of every render
+  // Seconds one render of a task may take before its worker kills it (and
+  // fails the attempt); unset: the server's default.
+  std::optional<double> task_timeout;
 };
 
 enum class TaskState { Queued, Leased, Done, Failed, Canceled, Paused };
@@ -69,9 +72,10 @@ struct Lease {
   double expiry = 0;     // seconds, the store's clock
   std::string scene;
   int spp = 0;
-  std::vector<Asset> assets;  // the job's assets
-  RenderBudget budget;        // this task's share of its frame's (task_budget)
-  RenderOverrides overrides;  // the job's
+  std::vector<Asset> assets;           // the job's assets
+  RenderBudget budget;                 // this task's share of its frame's (task_budget)
+  RenderOverrides overrides;           // the job's
+  std::optional<double> task_timeout;  // the job's (unset: the server's default applies)
 };
 
 // What a frame's output says of its noise (its EXR's vesper:* metadata);

@@ -42,7 +42,7 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
   lease.task = *store.leased_task(lease.lease_id);
   sql::Stmt job(store.db,
                 "SELECT scene, spp, noise_target, min_spp, time_limit, aovs, layer_variance, seed, "
-                "scale FROM jobs WHERE id = ?1");
+                "scale, task_timeout FROM jobs WHERE id = ?1");
   job.bind(1, lease.task.job_id);
   job.step();
   lease.scene = job.text(0);
@@ -57,6 +57,7 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
   o.layer_variance = job.i64(6) != 0;
   if (const auto seed = job.optional_i64(7)) o.seed = uint64_t(*seed);
   o.scale = job.optional_f64(8);
+  lease.task_timeout = job.optional_f64(9);
   lease.assets = store.assets(lease.task.job_id);
   return lease;
 }
@@ -69,6 +70,9 @@ JobStore::JobStore(const std::filesystem::path& file, StoreOptions options)
   db.exec("PRAGMA journal_mode = WAL");
   db.exec("PRAGMA synchronous = FULL");  // a committed state change survives power loss
   db.exec("PRAGMA foreign_keys = ON");
+  // Temporary tables and sort spills in memory: SQLite would otherwise write
+  // them to /var/tmp, outside the (private) data dir.
+  db.exec("PRAGMA temp_store = MEMORY");
   sql::Transaction tx(db);
   migrate_schema(db, file.string());
   tx.commit();
@@ -86,6 +90,8 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   for (const Asset& a : spec.assets)
     if (const std::string why = asset_name_problem(a.name); !why.empty())
       throw StoreError("job '" + spec.name + "': asset name '" + a.name + "' " + why);
+  if (spec.task_timeout && !(*spec.task_timeout > 0))
+    throw StoreError("job '" + spec.name + "': task_timeout must be positive");
   if (const auto why = budget_problem(spec.budget, spec.spp))
     throw StoreError("job '" + spec.name + "': " + why->field + ": " + why->message);
   const RenderOverrides& o = spec.overrides;
@@ -99,8 +105,9 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   const RenderBudget& b = spec.budget;
   sql::Stmt(db,
             "INSERT INTO jobs(name, scene, spp, priority, max_attempts, state, created, "
-            "inputs_key, noise_target, min_spp, time_limit, aovs, layer_variance, seed, scale) "
-            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14)")
+            "inputs_key, noise_target, min_spp, time_limit, aovs, layer_variance, seed, scale, "
+            "task_timeout) "
+            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15)")
       .bind(1, spec.name)
       .bind(2, spec.scene)
       .bind(3, int64_t(spec.spp))
@@ -115,6 +122,7 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
       .bind(12, int64_t(o.layer_variance))
       .bind(13, o.seed ? std::optional<int64_t>(int64_t(*o.seed)) : std::nullopt)
       .bind(14, o.scale)
+      .bind(15, spec.task_timeout)
       .run();
   const int64_t job = sqlite3_last_insert_rowid(db.get());
   for (size_t i = 0; i < spec.assets.size(); ++i)
@@ -204,6 +212,17 @@ bool JobStore::fail(const std::string& lease_id, const std::string& log_tail, do
   impl_->record_failure(task->id, task->job_id, task->worker, log_tail);
   tx.commit();
   return true;
+}
+
+int JobStore::renew_leases(double now) {
+  sql::Transaction tx(impl_->db);
+  sql::Stmt(impl_->db,
+            "UPDATE tasks SET lease_expiry = MAX(lease_expiry, ?1) WHERE state = 'leased'")
+      .bind(1, now + impl_->options.lease_seconds)
+      .run();
+  const int n = sqlite3_changes(impl_->db.get());
+  tx.commit();
+  return n;
 }
 
 int JobStore::expire_leases(double now) {

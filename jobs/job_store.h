@@ -62,6 +62,11 @@ class JobStore {
   bool fail(const std::string& lease_id, const std::string& log_tail, double now);
   // Requeues tasks whose lease expired (counted as a failed attempt).
   int expire_leases(double now);
+  // Gives every live lease at least lease_seconds from `now`; returns how
+  // many. A server calls it when it starts: while it was down no worker could
+  // heartbeat, so a lease must not be lost (and charged to its task and
+  // worker) for the server's absence.
+  int renew_leases(double now);
 
   bool cancel(int64_t job);
   bool pause(int64_t job);

@@ -47,6 +47,7 @@ inline constexpr const char* kNoiseTarget = "noise_target";
 inline constexpr const char* kMinSpp = "min_spp";
 inline constexpr const char* kMaxSpp = "max_spp";
 inline constexpr const char* kTimeLimit = "time_limit";
+inline constexpr const char* kTaskTimeout = "task_timeout";
 inline constexpr const char* kNoiseReached = "noise_reached";
 inline constexpr const char* kSppMean = "spp_mean";
 inline constexpr const char* kStopReason = "stop_reason";

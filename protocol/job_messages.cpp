@@ -35,7 +35,8 @@ VESPER_JSON_FIELDS(
     optional(f::kMinSpp, &SubmitRequest::min_spp), optional(f::kMaxSpp, &SubmitRequest::max_spp),
     optional(f::kTimeLimit, &SubmitRequest::time_limit), optional(f::kAovs, &SubmitRequest::aovs),
     optional(f::kLayerVariance, &SubmitRequest::layer_variance),
-    optional(f::kSeed, &SubmitRequest::seed), optional(f::kScale, &SubmitRequest::scale))
+    optional(f::kSeed, &SubmitRequest::seed), optional(f::kScale, &SubmitRequest::scale),
+    optional(f::kTaskTimeout, &SubmitRequest::task_timeout))
 VESPER_JSON_FIELDS(SubmitResponse, required(f::kId, &SubmitResponse::id),
                    required(f::kTaskCount, &SubmitResponse::task_count))
 VESPER_JSON_FIELDS(DryRunResponse, required(f::kDryRun, &DryRunResponse::dry_run),

@@ -37,6 +37,9 @@ struct SubmitRequest {
   bool layer_variance = false;
   std::optional<uint64_t> seed;  // instead of the scene's render.seed
   std::optional<double> scale;   // film size factor, in (0, 4]
+  // Seconds one render of one task may take before its worker kills it
+  // (that attempt fails); left out: the server's default.
+  std::optional<double> task_timeout;
 };
 
 // 201 answer to POST /jobs.

@@ -9,7 +9,8 @@ namespace f = field;
 using detail::optional;
 using detail::required;
 
-VESPER_JSON_FIELDS(RegisterRequest, required(f::kName, &RegisterRequest::name))
+VESPER_JSON_FIELDS(RegisterRequest, required(f::kName, &RegisterRequest::name),
+                   optional(f::kWorkerId, &RegisterRequest::worker_id))
 VESPER_JSON_FIELDS(RegisterResponse, required(f::kWorkerId, &RegisterResponse::worker_id))
 VESPER_JSON_FIELDS(AssetRef, required(f::kName, &AssetRef::name),
                    required(f::kBlob, &AssetRef::blob))
@@ -31,7 +32,8 @@ VESPER_JSON_FIELDS(
     optional(f::kMinSpp, &LeaseResponse::min_spp),
     optional(f::kTimeLimit, &LeaseResponse::time_limit), optional(f::kAovs, &LeaseResponse::aovs),
     optional(f::kLayerVariance, &LeaseResponse::layer_variance),
-    optional(f::kSeed, &LeaseResponse::seed), optional(f::kScale, &LeaseResponse::scale))
+    optional(f::kSeed, &LeaseResponse::seed), optional(f::kScale, &LeaseResponse::scale),
+    optional(f::kTaskTimeout, &LeaseResponse::task_timeout))
 VESPER_JSON_FIELDS(HeartbeatRequest, required(f::kLeaseId, &HeartbeatRequest::lease_id),
                    required(f::kProgress, &HeartbeatRequest::progress))
 VESPER_JSON_FIELDS(HeartbeatResponse, required(f::kAnswer, &HeartbeatResponse::answer))

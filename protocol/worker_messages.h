@@ -15,7 +15,11 @@ namespace vesper::protocol {
 
 // POST /workers/register
 struct RegisterRequest {
-  std::string name;  // at most 128 characters
+  std::string name;  // at most 128 characters, no control characters
+  // The id this worker had before (a restart): kept when the server knows it,
+  // so a restarted worker is the same worker (its blocklist entries, one
+  // line in workers.json) instead of a new one. Empty: a new id.
+  std::string worker_id;
 };
 struct RegisterResponse {
   std::string worker_id;
@@ -67,6 +71,10 @@ struct LeaseResponse {
   bool layer_variance = false;
   std::optional<uint64_t> seed;
   std::optional<double> scale;
+  // Seconds the render may take: the worker kills it after that and fails
+  // the attempt (the job's task_timeout, else the server's default; left out
+  // when neither is set).
+  std::optional<double> task_timeout;
 };
 
 // POST /heartbeat

@@ -9,6 +9,7 @@
 
 #include "common/secret_token.h"
 #include "common/sha256.h"
+#include "common/utf8.h"
 #include "server/api_error.h"
 
 namespace fs = std::filesystem;
@@ -24,11 +25,17 @@ BlobStore::BlobStore(fs::path root) : root_(std::move(root)) {
   fs::create_directories(root_ / "tmp");
   // Temp files of puts interrupted by a crash are garbage.
   for (const auto& e : fs::directory_iterator(root_ / "tmp")) fs::remove(e.path());
+  // Blobs of an older server were readable by everyone (0644): private now.
+  const fs::perms others = fs::perms::group_all | fs::perms::others_all;
+  for (const auto& e : fs::recursive_directory_iterator(root_))
+    if (e.is_regular_file() && (e.status().permissions() & others) != fs::perms::none)
+      fs::permissions(e.path(), fs::perms::owner_read | fs::perms::owner_write,
+                      fs::perm_options::replace);
 }
 
 fs::path BlobStore::path_of(const std::string& hash) const {
   if (!is_sha256_hex(hash))
-    throw ApiError(400, "malformed blob name '" + hash.substr(0, 80) +
+    throw ApiError(400, "malformed blob name '" + utf8_safe(hash, 80) +
                             "': expected a SHA-256 as 64 lower-case hex digits");
   return root_ / hash.substr(0, 2) / hash.substr(2);
 }
@@ -56,7 +63,7 @@ bool BlobStore::put(const std::string& hash, std::string_view bytes) {
   if (fs::exists(final_path)) return false;
   fs::create_directories(final_path.parent_path());
   const fs::path tmp = root_ / "tmp" / (hash + "." + random_hex(8));
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
   if (fd < 0) sys_fail("create " + tmp.string());
   size_t off = 0;
   while (off < bytes.size()) {

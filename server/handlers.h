@@ -38,6 +38,7 @@ struct WorkerHandlerDeps {
   ServerCounters& counters;
   ServerClock& clock;
   double lease_seconds;
+  double default_task_timeout;  // for jobs without one; 0 = none
   // Tasks were completed: a frame of several tasks may be ready to merge (a
   // reused output may have noise to read).
   std::function<void()> tasks_completed;

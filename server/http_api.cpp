@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "common/secret_token.h"
+#include "common/utf8.h"
 #include "protocol/error_body.h"
 #include "server/api_error.h"
 #include "server/metrics.h"
@@ -23,11 +24,30 @@ namespace {
 
 using protocol::Role;
 
+// Messages may quote what the client sent (a path segment, a name): made
+// valid UTF-8 first, or the JSON dump would throw and the answer be a 500.
 void send_error(httplib::Response& res, int status, const std::string& message,
                 const std::string& path = {}) {
   res.status = status;
-  res.set_content(nlohmann::json(protocol::ErrorBody{message, path}).dump() + "\n",
-                  "application/json");
+  res.set_content(
+      nlohmann::json(protocol::ErrorBody{utf8_safe(message), utf8_safe(path)}).dump() + "\n",
+      "application/json");
+}
+
+// An error answer after which the connection is closed, its unread bytes
+// never parsed as a next request. cpp-httplib 0.11 keeps a connection open
+// whatever the handler says, but drops it when a content provider fails:
+// this one sends the whole body, then reports failure.
+void send_error_and_close(httplib::Response& res, int status, const std::string& message) {
+  res.status = status;
+  res.set_header("Connection", "close");
+  const std::string body =
+      nlohmann::json(protocol::ErrorBody{utf8_safe(message), {}}).dump() + "\n";
+  res.set_content_provider(body.size(), "application/json",
+                           [body](size_t offset, size_t, httplib::DataSink& sink) {
+                             sink.write(body.data() + offset, body.size() - offset);
+                             return false;
+                           });
 }
 
 // Streams a file as the response body.
@@ -169,11 +189,25 @@ struct HttpApi::Impl {
   }
 
   void install_hooks() {
+    // Before the body is read: a request whose length is ambiguous (two
+    // Content-Length headers, which cpp-httplib would resolve by taking the
+    // first, or one beside Transfer-Encoding) is how requests are smuggled
+    // past a proxy. Refused, and the connection closed, as RFC 9112 says.
+    http.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+      const size_t lengths = req.get_header_value_count("Content-Length");
+      if (lengths <= 1 && !(lengths == 1 && req.has_header("Transfer-Encoding")))
+        return httplib::Server::HandlerResponse::Unhandled;
+      send_error_and_close(res, 400,
+                           lengths > 1 ? "more than one Content-Length header"
+                                       : "both Content-Length and Transfer-Encoding headers");
+      return httplib::Server::HandlerResponse::Handled;
+    });
     // JSON bodies for errors produced by httplib itself (404 no route, 413
     // over the payload limit, 400 unparsable request).
     http.set_error_handler(httplib::Server::HandlerWithResponse([this](const httplib::Request& req,
                                                                        httplib::Response& res) {
-      if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+      if (!res.body.empty() || res.get_header_value("Connection") == "close")
+        return httplib::Server::HandlerResponse::Unhandled;
       std::string msg = res.status == 404   ? "no such endpoint: " + req.method + " " + req.path
                         : res.status == 413 ? "request body exceeds the limit of " +
                                                   std::to_string(config.max_blob_bytes) + " bytes"

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 
+#include "common/utf8.h"
 #include "server/api_error.h"
 
 namespace vesper {
@@ -15,7 +16,9 @@ std::string ApiRequest::query_value(const std::string& key) const {
 ApiResponse json_response(int status, const nlohmann::json& body) {
   ApiResponse r;
   r.status = status;
-  r.body = body.dump() + "\n";
+  // Text from outside (a merge's stderr) may hold bytes that are not UTF-8:
+  // replaced rather than thrown about.
+  r.body = body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
   r.content_type = "application/json";
   return r;
 }
@@ -43,7 +46,7 @@ int64_t id_param(const ApiRequest& req, size_t index) {
     if (used == s.size() && v > 0) return v;
   } catch (const std::exception&) {
   }
-  throw ApiError(404, "no such id '" + s + "'");
+  throw ApiError(404, "no such id '" + utf8_safe(s, 80) + "'");
 }
 
 int frame_param(const ApiRequest& req, size_t index) {
@@ -54,7 +57,7 @@ int frame_param(const ApiRequest& req, size_t index) {
     if (used == s.size() && v >= INT32_MIN && v <= INT32_MAX) return int(v);
   } catch (const std::exception&) {
   }
-  throw ApiError(404, "no such frame '" + s.substr(0, 80) + "'");
+  throw ApiError(404, "no such frame '" + utf8_safe(s, 80) + "'");
 }
 
 }  // namespace vesper

@@ -4,6 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/json_error.h"
+#include "common/json_parse.h"
+#include "jobs/scene_references.h"
 #include "protocol/fields.h"
 #include "protocol/job_messages.h"
 #include "server/api_error.h"
@@ -45,6 +48,25 @@ protocol::TaskInfo to_wire(const Task& t) {
                  path);
 }
 
+// A scene that references a file outside its task directory (an absolute
+// path, a '..' segment) would read the worker's own files: refused. A scene
+// that is not JSON is left to the renderer, which fails the task saying why.
+void refuse_outside_references(const BlobStore& blobs, const std::string& scene) {
+  const auto file = blobs.file(scene);
+  if (!file) return;
+  nlohmann::json doc;
+  try {
+    doc = read_json_file(*file, "the scene blob");
+  } catch (const JsonError&) {
+    return;
+  }
+  if (const auto where = outside_reference(doc))
+    throw ApiError(400,
+                   "the scene references a file outside its directory: " + *where +
+                       "; upload the file as an asset and name it by its asset name",
+                   std::string("/") + protocol::field::kScene);
+}
+
 ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
   const JobSpec spec = read_job_request(req.body);
   namespace f = protocol::field;
@@ -53,6 +75,7 @@ ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
     if (!d.blobs.exists(spec.assets[i].blob))
       missing_blob(spec.assets[i].blob, " for asset '" + spec.assets[i].name + "'",
                    std::string("/") + f::kAssets + "/" + std::to_string(i) + "/" + f::kBlob);
+  refuse_outside_references(d.blobs, spec.scene);
   const int64_t n = task_count(spec);
   const std::string dry = req.query_value(std::string(protocol::kDryRunParam));
   if (dry == "1" || dry == "true")

@@ -4,9 +4,11 @@
 #include <climits>
 #include <set>
 
+#include "common/control_characters.h"
 #include "common/json_parse.h"
 #include "common/json_reader.h"
 #include "common/sha256.h"
+#include "common/utf8.h"
 #include "jobs/frame_range.h"
 #include "protocol/fields.h"
 #include "renderer/scene/aov_list.h"
@@ -18,6 +20,9 @@ namespace {
 namespace f = protocol::field;
 
 constexpr const char* kBody = "request body";
+
+// Seconds a task's render may take: more than a month is a typo.
+const Range kTaskTimeoutRange = Range::left_open(0, 30 * 86400);
 
 // Parses `body` and reads its root with `read`; a JsonError becomes ApiError
 // 400 at its JSON path.
@@ -55,12 +60,26 @@ std::string sha256_at(JsonReader& o, std::string_view key, const std::string& wh
   return v.json().get<std::string>();
 }
 
-// Control characters of a name shown in a message become '?'.
+// A name quoted in a message: at most 80 bytes, control characters escaped.
 std::string shown(const std::string& name) {
-  std::string s = name.substr(0, 80);
-  for (char& c : s)
-    if (static_cast<unsigned char>(c) < 0x20) c = '?';
-  return s;
+  return escape_control_characters(utf8_safe(name, 80));
+}
+
+// A name people will read on terminals and in file names (a job's, a
+// worker's): `max_bytes` at most, no control characters.
+std::string read_name(JsonReader& o, std::string_view key, size_t max_bytes,
+                      const std::string& fallback = {}) {
+  const auto node = o.optional_child(key);
+  if (!node) {
+    if (fallback.empty()) o.fail_key(key, "missing required key '" + std::string(key) + "'");
+    return fallback;
+  }
+  const std::string name = node->as_string(/*allow_empty=*/!fallback.empty());
+  if (name.size() > max_bytes)
+    o.fail_key(key, "name longer than " + std::to_string(max_bytes) + " characters");
+  if (const std::string why = control_character_problem(name); !why.empty())
+    o.fail_key(key, "name '" + shown(name) + "' " + why);
+  return name;
 }
 
 Asset read_asset(JsonReader a, std::set<std::string>& names, std::set<std::string>& dirs) {
@@ -93,7 +112,7 @@ std::vector<Asset> read_assets(const JsonReader& assets) {
   // A name cannot be a file and a directory at once ("a" and "a/b").
   for (size_t i = 0; i < out.size(); ++i)
     if (dirs.count(out[i].name))
-      assets.element(i).fail_key(f::kName, "asset name '" + out[i].name.substr(0, 80) +
+      assets.element(i).fail_key(f::kName, "asset name '" + shown(out[i].name) +
                                                "' is also the directory of another asset");
   return out;
 }
@@ -124,11 +143,9 @@ std::vector<int> read_frames(const JsonReader& frames) {
 JobSpec read_job(JsonReader& o) {
   o.allow_keys({f::kName, f::kScene, f::kFrames, f::kSpp, f::kSamplesPerTask, f::kPriority,
                 f::kMaxAttempts, f::kAssets, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp, f::kTimeLimit,
-                f::kAovs, f::kLayerVariance, f::kSeed, f::kScale});
+                f::kAovs, f::kLayerVariance, f::kSeed, f::kScale, f::kTaskTimeout});
   JobSpec spec;
-  const auto name = o.optional_child(f::kName);
-  spec.name = name ? name->as_string(/*allow_empty=*/true) : "job";
-  if (spec.name.size() > 256) o.fail_key(f::kName, "name longer than 256 characters");
+  spec.name = read_name(o, f::kName, 256, "job");
   spec.scene = sha256_at(o, f::kScene, "an uploaded scene blob");
   spec.frames = read_frames(required(o, f::kFrames));
   spec.spp = int(o.integer(f::kSpp, spec.spp, 1, kMaxFrameSpp));
@@ -141,6 +158,8 @@ JobSpec read_job(JsonReader& o) {
   spec.spp = budget.frame_spp(spec.spp);
   spec.budget = budget.budget;
   spec.overrides = read_render_overrides(o);
+  if (const auto v = o.optional_child(f::kTaskTimeout))
+    spec.task_timeout = v->as_number(kTaskTimeoutRange);
   const int64_t n = task_count(spec);
   if (n > kMaxTasksPerJob)
     o.fail_key(spec.samples_per_task > 0 ? f::kSamplesPerTask : f::kFrames,
@@ -187,9 +206,9 @@ JobSpec read_job_request(const std::string& body) { return read_body(body, read_
 
 protocol::RegisterRequest read_register_request(const std::string& body) {
   return read_body(body, [](JsonReader& o) {
-    o.allow_keys({f::kName});
-    protocol::RegisterRequest r{required(o, f::kName).as_string()};
-    if (r.name.size() > 128) o.fail_key(f::kName, "name longer than 128 characters");
+    o.allow_keys({f::kName, f::kWorkerId});
+    protocol::RegisterRequest r{read_name(o, f::kName, 128), optional_string(o, f::kWorkerId)};
+    if (r.worker_id.size() > 64) o.fail_key(f::kWorkerId, "expected a worker id this server gave");
     return r;
   });
 }

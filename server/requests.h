@@ -29,7 +29,8 @@ class JsonReader;
 // The render budget keys "noise_target", "min_spp", "max_spp" and
 // "time_limit" (jobs/render_budget.h): with max_spp the frame's spp is
 // max_spp; min_spp and max_spp need a noise target, min_spp <= the frame's
-// spp. Errors name the key ("/min_spp").
+// spp. Errors name the key ("/min_spp"). "task_timeout": seconds one
+// render of a task may take, in (0, 30 days].
 constexpr int64_t kMaxTasksPerJob = 100000;
 constexpr int kMaxFrameSpp = 1 << 20;  // samples a pixel of a frame may take
 constexpr int64_t kMaxAssetsPerJob = 10000;

@@ -9,6 +9,7 @@
 
 #include "jobs/job_store.h"
 #include "server/blob_store.h"
+#include "server/data_dir.h"
 #include "server/frame_merger.h"
 #include "server/handlers.h"
 #include "server/http_api.h"
@@ -26,10 +27,7 @@ namespace {
 
 ServerConfig prepare(ServerConfig c) {
   if (c.data_dir.empty()) throw std::invalid_argument("server: data_dir is empty");
-  if (!fs::exists(c.data_dir)) {
-    fs::create_directories(c.data_dir);
-    fs::permissions(c.data_dir, fs::perms::owner_all, fs::perm_options::replace);
-  }
+  make_data_dir_private(c.data_dir);
   if (c.lease_seconds <= 0) throw std::invalid_argument("server: lease_seconds must be positive");
   if (c.threads < 1) c.threads = 1;
   return c;
@@ -69,8 +67,9 @@ struct Server::Impl {
   HandlerTable handlers() {
     HandlerTable table;
     add_job_handlers(table, {store, blobs, leases, merger, clock});
-    add_worker_handlers(table, {store, blobs, workers, leases, counters, clock,
-                                config.lease_seconds, [this] { merger.wake(); }});
+    add_worker_handlers(table,
+                        {store, blobs, workers, leases, counters, clock, config.lease_seconds,
+                         config.task_timeout, [this] { merger.wake(); }});
     add_frame_handlers(table, {store, blobs, merger});
     add_blob_handlers(table, blobs);
     add_ops_handlers(table, {store, workers, counters});
@@ -87,6 +86,11 @@ int Server::start() {
   if (s.started) throw std::logic_error("Server::start called twice");
   s.started = true;
   s.http.route(s.handlers());
+  // Before anything can expire a lease: while this server was down no worker
+  // could heartbeat, and a lease lost to a restart would charge its task.
+  if (const int renewed =
+          s.store.with([&](JobStore& st) { return st.renew_leases(s.clock.now()); }))
+    spdlog::info("renewed {} leases held before the restart", renewed);
   s.bound_port = s.http.bind();
   s.http.serve();
   s.leases.start_reaper(s.config.reaper_interval > 0 ? s.config.reaper_interval

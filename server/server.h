@@ -21,6 +21,10 @@ struct ServerConfig {
   std::string host = "127.0.0.1";  // loopback unless configured otherwise
   int port = 0;                    // 0 = an ephemeral port (start() returns it)
   double lease_seconds = 60;
+  // Seconds one render of a task may take when its job sets no
+  // task_timeout (the farm default): the worker kills a longer render and
+  // fails that attempt. 0 = no default limit.
+  double task_timeout = 86400;
   int blocklist_threshold = 3;
   std::size_t max_blob_bytes = std::size_t(64) << 20;  // PUT /blobs bodies; 413 beyond
   std::size_t max_json_bytes = std::size_t(1) << 20;   // JSON bodies; 413 beyond

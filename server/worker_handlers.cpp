@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/control_characters.h"
+#include "common/utf8.h"
 #include "protocol/fields.h"
 #include "protocol/job_messages.h"
 #include "protocol/worker_messages.h"
@@ -27,7 +29,7 @@ constexpr size_t kMaxLogTail = 64 * 1024;
 
 [[noreturn]] void stale(const std::string& lease_id) {
   throw ApiError(409,
-                 "stale lease '" + lease_id.substr(0, 80) +
+                 "stale lease '" + utf8_safe(lease_id, 80) +
                      "': it expired, was re-leased, or its task was canceled; drop the task",
                  std::string("/") + f::kLeaseId);
 }
@@ -36,8 +38,9 @@ ApiResponse ok() { return json_response(200, protocol::OkResponse{}); }
 
 ApiResponse register_worker(const WorkerHandlerDeps& d, const ApiRequest& req) {
   const auto r = read_register_request(req.body);
-  const std::string id = d.workers.add(r.name, d.clock.now());
-  spdlog::info("worker '{}' registered as {}", r.name, id);
+  const std::string id = d.workers.add(r.name, d.clock.now(), r.worker_id);
+  spdlog::info("worker '{}' {} as {}", escape_control_characters(r.name),
+               id == r.worker_id ? "registered again" : "registered", id);
   return json_response(200, protocol::RegisterResponse{id});
 }
 
@@ -55,7 +58,7 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
   const double t = d.clock.now();
   if (!d.workers.touch(r.worker_id, t))
     throw ApiError(404,
-                   "unknown worker '" + r.worker_id.substr(0, 80) + "': register first (POST " +
+                   "unknown worker '" + utf8_safe(r.worker_id, 80) + "': register first (POST " +
                        protocol::api(protocol::paths::kWorkerRegister) + ")",
                    std::string("/") + f::kWorkerId);
   int reused = 0;
@@ -91,6 +94,8 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
   out.layer_variance = l->overrides.layer_variance;
   out.seed = l->overrides.seed;
   out.scale = l->overrides.scale;
+  out.task_timeout = l->task_timeout;
+  if (!out.task_timeout && d.default_task_timeout > 0) out.task_timeout = d.default_task_timeout;
   return json_response(200, out);
 }
 
@@ -127,7 +132,7 @@ ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
 
 ApiResponse fail(const WorkerHandlerDeps& d, const ApiRequest& req) {
   auto r = read_fail_request(req.body);
-  if (r.log.size() > kMaxLogTail) r.log = r.log.substr(r.log.size() - kMaxLogTail);
+  r.log = utf8_tail(r.log, kMaxLogTail);
   const double t = d.clock.now();
   const bool failed = d.store.with([&](JobStore& s) { return s.fail(r.lease_id, r.log, t); });
   d.leases.note(r.lease_id, t, true);

@@ -32,10 +32,13 @@ WorkerRegistry::WorkerRegistry(fs::path file) : file_(std::move(file)) {
   }
 }
 
-std::string WorkerRegistry::add(const std::string& name, double now) {
+std::string WorkerRegistry::add(const std::string& name, double now,
+                                const std::string& previous_id) {
   std::lock_guard lock(mutex_);
-  const std::string id = random_hex(16);
-  workers_[id] = WorkerInfo{id, name, now, now};
+  auto known = workers_.find(previous_id);
+  const std::string id = known != workers_.end() ? previous_id : random_hex(16);
+  const double registered = known != workers_.end() ? known->second.registered : now;
+  workers_[id] = WorkerInfo{id, name, registered, now};
   save_locked();
   return id;
 }

@@ -24,7 +24,10 @@ struct WorkerInfo {
 class WorkerRegistry {
  public:
   explicit WorkerRegistry(std::filesystem::path file);
-  std::string add(const std::string& name, double now);
+  // Registers a worker: `previous_id` (the id a restarted worker had) is
+  // kept when known — its name and last-seen are updated, nothing is added —
+  // else a new random id is made. Returns the id.
+  std::string add(const std::string& name, double now, const std::string& previous_id = {});
   // Updates last-seen; false for an unknown id.
   bool touch(const std::string& id, double now);
   std::optional<WorkerInfo> find(const std::string& id) const;

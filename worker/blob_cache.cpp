@@ -6,13 +6,15 @@ namespace fs = std::filesystem;
 
 namespace vesper::worker_detail {
 
-std::string BlobCache::fetch(const std::string& blob, const fs::path& file, const std::string& what,
-                             const std::string& unique) {
+BlobCache::Fetched BlobCache::fetch(const std::string& blob, const fs::path& file,
+                                    const std::string& what, const std::string& unique,
+                                    LeaseRetry& retry, int64_t task_id) {
   // Checked before the name becomes a path.
-  if (!is_sha256_hex(blob)) return "the lease names a malformed " + what + " hash '" + blob + "'";
+  if (!is_sha256_hex(blob)) return {"the lease names a malformed " + what + " hash '" + blob + "'"};
   if (sha256_file(file) == blob) return {};
   const fs::path part = dir_ / "tmp" / (blob + "." + unique + ".part");
-  const HttpResponse g = api_.download_blob(blob, part);
+  const HttpResponse g = retry.call([&] { return api_.download_blob(blob, part); },
+                                    "the download of the " + what, task_id);
   std::string problem;
   std::error_code ec;
   if (g.status != 200)
@@ -24,7 +26,7 @@ std::string BlobCache::fetch(const std::string& blob, const fs::path& file, cons
     fs::rename(part, file, ec);
   if (problem.empty() && ec) problem = "cannot store " + file.string() + ": " + ec.message();
   fs::remove(part, ec);
-  return problem;
+  return {problem, g.status != 200 && retry.gave_up()};
 }
 
 }  // namespace vesper::worker_detail

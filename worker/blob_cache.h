@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "worker/lease_retry.h"
 #include "worker/server_api.h"
 
 namespace vesper::worker_detail {
@@ -15,11 +16,16 @@ class BlobCache {
   BlobCache(ServerApi& api, std::filesystem::path cache_dir)
       : api_(api), dir_(std::move(cache_dir)) {}
 
-  // Makes `file` hold the blob `blob` (verified). `what` names it in the
-  // problem ("scene", "asset 'cube.obj'"); `unique` makes the download's temp
-  // name unique among workers sharing the cache. Returns the problem, or "".
-  std::string fetch(const std::string& blob, const std::filesystem::path& file,
-                    const std::string& what, const std::string& unique);
+  struct Fetched {
+    std::string problem;   // "" when `file` holds the blob
+    bool gave_up = false;  // the server stayed away or in trouble (not the task's fault)
+  };
+  // Makes `file` hold the blob `blob` (verified), downloading it with
+  // `retry`'s patience. `what` names it in the problem ("scene", "asset
+  // 'cube.obj'"); `unique` makes the download's temp name unique among
+  // workers sharing the cache; `task_id` labels log lines.
+  Fetched fetch(const std::string& blob, const std::filesystem::path& file, const std::string& what,
+                const std::string& unique, LeaseRetry& retry, int64_t task_id);
 
  private:
   ServerApi& api_;

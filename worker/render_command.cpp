@@ -26,6 +26,9 @@ std::vector<std::string> render_command(const protocol::LeaseResponse& lease,
                                    std::to_string(lease.task.sample_end),
                                    "--frame",
                                    std::to_string(lease.task.frame)};
+  // The scene came from a submitter: the files it reads must be in the task
+  // directory, never elsewhere on this machine.
+  argv.push_back("--scene-dir-only");
   if (renders_partial(lease)) argv.push_back("--partial");
   // This task's share of its frame's budget (jobs/render_budget.h).
   auto add = [&argv](const char* flag, const std::string& value) {

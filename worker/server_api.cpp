@@ -10,6 +10,16 @@ namespace vesper::worker_detail {
 namespace paths = protocol::paths;
 using nlohmann::json;
 
+namespace {
+
+// A request as JSON text. A failure log quotes the render's stderr, which may
+// hold bytes that are not UTF-8: replaced, not thrown about.
+std::string body(const json& request) {
+  return request.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+}  // namespace
+
 std::string describe(const HttpResponse& r) {
   if (r.status == 0) return "transport error: " + r.error;
   std::string msg = "HTTP " + std::to_string(r.status);
@@ -25,23 +35,23 @@ ServerApi::ServerApi(const std::string& server_url, const std::string& token)
     : http_(server_url, token) {}
 
 HttpResponse ServerApi::register_worker(const protocol::RegisterRequest& request) {
-  return http_.post_json(protocol::api(paths::kWorkerRegister), json(request).dump());
+  return http_.post_json(protocol::api(paths::kWorkerRegister), body(request));
 }
 
 HttpResponse ServerApi::lease(const protocol::LeaseRequest& request) {
-  return http_.post_json(protocol::api(paths::kLease), json(request).dump());
+  return http_.post_json(protocol::api(paths::kLease), body(request));
 }
 
 HttpResponse ServerApi::heartbeat(const protocol::HeartbeatRequest& request) {
-  return http_.post_json(protocol::api(paths::kHeartbeat), json(request).dump());
+  return http_.post_json(protocol::api(paths::kHeartbeat), body(request));
 }
 
 HttpResponse ServerApi::fail(const protocol::FailRequest& request) {
-  return http_.post_json(protocol::api(paths::kFail), json(request).dump());
+  return http_.post_json(protocol::api(paths::kFail), body(request));
 }
 
 HttpResponse ServerApi::complete(const protocol::CompleteRequest& request) {
-  return http_.post_json(protocol::api(paths::kComplete), json(request).dump());
+  return http_.post_json(protocol::api(paths::kComplete), body(request));
 }
 
 HttpResponse ServerApi::download_blob(const std::string& blob, const std::filesystem::path& file) {

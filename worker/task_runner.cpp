@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 
 #include "process/child_process.h"
@@ -32,7 +33,19 @@ RenderRun run_render(const std::vector<std::string>& argv, const RenderWatch& wa
     return std::chrono::duration<double>(Clock::now() - started).count();
   };
   run.end = RenderRun::End::Exited;
-  while (!child->wait_for(watch.heartbeat_seconds)) {
+  run.pid = long(child->pid());
+  const double timeout = watch.timeout_seconds.value_or(std::numeric_limits<double>::infinity());
+  auto next_beat = watch.heartbeat_seconds;
+  for (;;) {
+    // Wake for the next heartbeat or the timeout, whichever comes first.
+    if (child->wait_for(std::max(0.0, std::min(next_beat, timeout) - elapsed()))) break;
+    if (elapsed() >= timeout) {
+      child->kill(watch.kill_grace_seconds);
+      run.end = RenderRun::End::TimedOut;
+      break;
+    }
+    if (elapsed() < next_beat) continue;
+    next_beat = elapsed() + watch.heartbeat_seconds;
     if (!heartbeat(estimate_progress(elapsed(), watch.expected_seconds, child->stderr_tail()))) {
       child->kill(watch.kill_grace_seconds);
       run.end = RenderRun::End::Dropped;

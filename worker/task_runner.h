@@ -15,12 +15,16 @@ struct RenderWatch {
   // estimate until the render reports its own.
   std::optional<double> expected_seconds;
   size_t log_tail_bytes = 64 * 1024;  // stderr kept for the failure log
+  // Seconds the render may take (the task timeout); a longer one is killed
+  // (SIGTERM to its process group, SIGKILL after the grace) and TimedOut.
+  std::optional<double> timeout_seconds;
 };
 
 struct RenderRun {
   enum class End {
     NotStarted,  // the child could not be spawned (`status` says why)
     Dropped,     // the heartbeat said stop: the child was killed
+    TimedOut,    // it ran past watch.timeout_seconds: the child was killed
     Exited,      // the child ended by itself; `succeeded` when its exit code is 0
   };
   End end = End::NotStarted;
@@ -28,6 +32,7 @@ struct RenderRun {
   std::string status;  // "exit code 2", "killed by signal 11 (Segmentation fault)", spawn error
   std::string stderr_tail;
   double seconds = 0;
+  long pid = 0;  // the child's (its process group's) id, for logs
 };
 
 // The progress to report after `elapsed` seconds: the render's own last
@@ -37,7 +42,8 @@ double estimate_progress(double elapsed, std::optional<double> expected_seconds,
 
 // Starts `argv` (process/child_process.h) and waits for it, calling
 // `heartbeat(progress)` every watch.heartbeat_seconds; when that returns
-// false the child is killed and the run is Dropped.
+// false the child is killed and the run is Dropped; when it runs past
+// watch.timeout_seconds it is killed and the run TimedOut.
 RenderRun run_render(const std::vector<std::string>& argv, const RenderWatch& watch,
                      const std::function<bool(double progress)>& heartbeat);
 

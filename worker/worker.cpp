@@ -1,5 +1,6 @@
 #include "worker/worker.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -10,14 +11,17 @@
 #include <random>
 
 #include "common/sha256.h"
+#include "common/utf8.h"
 #include "protocol/worker_messages.h"
 #include "worker/backoff.h"
 #include "worker/blob_cache.h"
+#include "worker/lease_retry.h"
 #include "worker/render_command.h"
 #include "worker/server_api.h"
 #include "worker/task_dir.h"
 #include "worker/task_runner.h"
 #include "worker/uploader.h"
+#include "worker/worker_identity.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -34,11 +38,6 @@ std::string hostname() {
   char buf[256] = {0};
   if (::gethostname(buf, sizeof buf - 1) != 0 || !buf[0]) return "worker";
   return buf;
-}
-
-std::string tail_of(std::string s, size_t n) {
-  if (s.size() > n) s.erase(0, s.size() - n);
-  return s;
 }
 
 // Unique per Worker (pid + random), so that several workers (threads or
@@ -61,6 +60,7 @@ struct Worker::Impl {
   WorkerConfig cfg;
   std::unique_ptr<ServerApi> api;
   std::unique_ptr<BlobCache> cache;
+  std::unique_ptr<WorkerIdentity> identity;  // the id kept across restarts
   Backoff backoff;
   mutable std::mutex id_mutex;
   std::string worker_id;
@@ -84,12 +84,14 @@ struct Worker::Impl {
   WorkerState register_worker();
   WorkerState lease();
   void work_on(const protocol::LeaseResponse& l);
-  std::optional<fs::path> fetch(const protocol::LeaseResponse& l);
+  std::optional<fs::path> fetch(const protocol::LeaseResponse& l, LeaseRetry& retry);
   std::optional<fs::path> run(const protocol::LeaseResponse& l, const fs::path& task_dir,
-                              double& seconds);
-  bool heartbeat(const protocol::LeaseResponse& l, double progress);
-  void upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out, double seconds);
+                              double& seconds, LeaseRetry& retry);
+  bool heartbeat(const protocol::LeaseResponse& l, double progress, LeaseRetry& retry);
+  void upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out, double seconds,
+                           LeaseRetry& retry);
   void fail(const protocol::LeaseResponse& l, const std::string& log);
+  void drop(const protocol::LeaseResponse& l, const std::string& why);
 };
 
 Worker::Worker(WorkerConfig config) : impl_(std::make_unique<Impl>(*this, std::move(config))) {}
@@ -142,15 +144,19 @@ bool Worker::Impl::start() {
   }
   api = std::make_unique<ServerApi>(cfg.server_url, cfg.token);
   cache = std::make_unique<BlobCache>(*api, cfg.cache_dir);
+  identity = std::make_unique<WorkerIdentity>(cfg.cache_dir);
   return true;
 }
 
-// Register (again, if the server forgot us): a transport error or 5xx is
-// retried with back-off (the server may be restarting); 400/401 is fatal.
+// Register (again, if the server forgot us), with the id this worker had
+// (before a restart: kept in the cache dir), so the server keeps it: a
+// transport error or 5xx is retried with back-off (the server may be
+// restarting); 400/401 is fatal.
 WorkerState Worker::Impl::register_worker() {
   for (;;) {
     if (stopping()) return WorkerState::Stopped;
-    const HttpResponse r = api->register_worker({cfg.name});
+    const std::string previous = self.worker_id().empty() ? identity->saved_id() : self.worker_id();
+    const HttpResponse r = api->register_worker({cfg.name, previous});
     if (r.status == 200 || r.status == 201) {
       try {
         std::lock_guard<std::mutex> lock(id_mutex);
@@ -159,6 +165,7 @@ WorkerState Worker::Impl::register_worker() {
         spdlog::error("worker: bad register answer: {}", e.what());
         return WorkerState::Fatal;
       }
+      identity->save(self.worker_id());
       spdlog::info("worker '{}' registered as {} with {}", cfg.name, self.worker_id(),
                    cfg.server_url);
       backoff.reset();
@@ -208,27 +215,35 @@ WorkerState Worker::Impl::lease() {
   return WorkerState::Lease;
 }
 
-// fetch → run → upload → complete; a problem at any step fails the task
-// (the worker carries on).
+// fetch → run → upload → complete; a problem of the task at any step fails
+// it, a server away for longer than the lease could live drops it (the
+// worker carries on either way).
 void Worker::Impl::work_on(const protocol::LeaseResponse& l) {
   spdlog::info("task {} (job {}, frame {}, samples [{}, {}) of {}{}, attempt {}): leased",
                l.task.id, l.task.job_id, l.task.frame, l.task.sample_begin, l.task.sample_end,
                l.spp, describe_budget(l), l.task.attempt);
-  const std::optional<fs::path> task_dir = fetch(l);
+  LeaseRetry retry(l.lease_seconds, Backoff(cfg.idle_backoff_min, cfg.idle_backoff_max),
+                   self.stop_);
+  const std::optional<fs::path> task_dir = fetch(l, retry);
   if (!task_dir) return;
   double seconds = 0;
-  const std::optional<fs::path> out = run(l, *task_dir, seconds);
+  const std::optional<fs::path> out = run(l, *task_dir, seconds, retry);
   if (!out) return;
-  upload_and_complete(l, *out, seconds);
+  upload_and_complete(l, *out, seconds, retry);
 }
 
 // The scene and its assets, from the verified cache, in a task directory.
-std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l) {
-  std::string problem =
-      cache->fetch(l.scene, cfg.cache_dir / (l.scene + ".json"), "scene", unique_name());
-  for (size_t i = 0; problem.empty() && i < l.assets.size(); ++i)
-    problem = cache->fetch(l.assets[i].blob, asset_cache_file(cfg.cache_dir, l.assets[i].blob),
-                           "asset '" + l.assets[i].name + "'", unique_name());
+std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l, LeaseRetry& retry) {
+  BlobCache::Fetched got = cache->fetch(l.scene, cfg.cache_dir / (l.scene + ".json"), "scene",
+                                        unique_name(), retry, l.task.id);
+  for (size_t i = 0; got.problem.empty() && i < l.assets.size(); ++i)
+    got = cache->fetch(l.assets[i].blob, asset_cache_file(cfg.cache_dir, l.assets[i].blob),
+                       "asset '" + l.assets[i].name + "'", unique_name(), retry, l.task.id);
+  if (got.gave_up) {
+    drop(l, got.problem);
+    return std::nullopt;
+  }
+  std::string problem = got.problem;
   if (problem.empty()) {
     try {
       std::vector<Asset> assets;  // the job store's spelling of the lease's assets
@@ -246,7 +261,8 @@ std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l) {
 // Renders in a child process, heartbeating; returns the output file, or
 // nullopt when the task was dropped or failed (then reported and cleaned up).
 std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
-                                          const fs::path& task_dir, double& seconds) {
+                                          const fs::path& task_dir, double& seconds,
+                                          LeaseRetry& retry) {
   const fs::path out =
       cfg.cache_dir / "tmp" / ("render-" + unique_name() + render_output_extension(l));
   const std::vector<std::string> argv = render_command(l, cfg, task_dir / "scene.json", out);
@@ -256,9 +272,10 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
   watch.heartbeat_seconds = std::max(0.05, std::min(cfg.heartbeat_seconds, l.lease_seconds / 3));
   watch.kill_grace_seconds = cfg.kill_grace_seconds;
   watch.log_tail_bytes = kLogTail;
+  watch.timeout_seconds = l.task_timeout;
   if (auto it = durations.find(duration_key); it != durations.end())
     watch.expected_seconds = it->second;
-  const RenderRun r = run_render(argv, watch, [&](double p) { return heartbeat(l, p); });
+  const RenderRun r = run_render(argv, watch, [&](double p) { return heartbeat(l, p, retry); });
   seconds = r.seconds;
   std::error_code ec;
   if (r.end == RenderRun::End::NotStarted) {
@@ -269,6 +286,16 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
   if (r.end == RenderRun::End::Dropped) {
     fs::remove(out, ec);
     ++self.dropped_;
+    return std::nullopt;
+  }
+  if (r.end == RenderRun::End::TimedOut) {
+    const std::string why = fmt::format(
+        "the render ran longer than the task timeout of {} s and was killed (pid {}, {})",
+        *l.task_timeout, r.pid, r.status);
+    spdlog::warn("task {}: {}", l.task.id, why);
+    fail(l, "worker: " + why + "\ncommand: " + command_line(argv) + "\n--- stderr (tail) ---\n" +
+                r.stderr_tail);
+    fs::remove(out, ec);
     return std::nullopt;
   }
   if (!r.succeeded || !fs::exists(out)) {
@@ -284,8 +311,9 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
 }
 
 // One heartbeat; false when the render must stop ("stop": job canceled or
-// paused; 409: the lease is stale). A transport failure waits for the next beat.
-bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress) {
+// paused; 409: the lease is stale). A transport failure waits for the next
+// beat; an accepted beat renews the lease (`retry`'s deadline).
+bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress, LeaseRetry& retry) {
   const HttpResponse hb = api->heartbeat({l.lease_id, progress});
   bool stop = false;
   if (hb.status == 200) {
@@ -295,6 +323,7 @@ bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress) 
     } catch (const json::exception&) {
       // An answer this worker does not understand is not an order to stop.
     }
+    if (!stop) retry.confirmed();
   }
   if (hb.status == 409 || stop) {
     spdlog::info("task {}: {}; killing the render", l.task.id,
@@ -307,15 +336,18 @@ bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress) 
 
 // Upload the result (content addressed), then complete; the temp file always goes.
 void Worker::Impl::upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out,
-                                       double seconds) {
-  const Upload up = upload_result(*api, out, l.task.id);
+                                       double seconds, LeaseRetry& retry) {
+  const Upload up = upload_result(*api, out, l.task.id, retry);
   std::error_code ec;
   fs::remove(out, ec);
   if (!up.blob) {
-    fail(l, "worker: upload of the result failed: " + up.problem);
+    if (up.gave_up)
+      drop(l, "the upload of the result: " + up.problem);
+    else
+      fail(l, "worker: upload of the result failed: " + up.problem);
     return;
   }
-  switch (complete_task(*api, l.lease_id, *up.blob, l.task.id)) {
+  switch (complete_task(*api, l.lease_id, *up.blob, l.task.id, retry)) {
     case Completion::Completed:
       spdlog::info("task {}: done in {:.2f} s, result {}", l.task.id, seconds, *up.blob);
       ++self.completed_;
@@ -323,13 +355,27 @@ void Worker::Impl::upload_and_complete(const protocol::LeaseResponse& l, const f
     case Completion::Stale:
       ++self.dropped_;
       break;
+    case Completion::GaveUp:
+      drop(l, "the completion was not taken");
+      break;
     case Completion::Failed:
       break;
   }
 }
 
+// The server stayed away or in trouble for as long as the lease could live:
+// not the task's fault, so no POST /fail (no attempt charged, no blocklist);
+// the lease expires on the server and the task is rendered again.
+void Worker::Impl::drop(const protocol::LeaseResponse& l, const std::string& why) {
+  spdlog::warn(
+      "task {}: dropped, the server could not be reached in time ({}); it will be "
+      "rendered again",
+      l.task.id, why);
+  ++self.dropped_;
+}
+
 void Worker::Impl::fail(const protocol::LeaseResponse& l, const std::string& log) {
-  const HttpResponse f = api->fail({l.lease_id, tail_of(log, kLogTail)});
+  const HttpResponse f = api->fail({l.lease_id, utf8_tail(log, kLogTail)});
   if (f.status == 409)
     spdlog::info("task {}: fail refused, lease is stale", l.task.id);
   else if (!f.ok())

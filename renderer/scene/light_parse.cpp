@@ -45,7 +45,7 @@ EnvironmentLightDesc parse_environment(JsonReader& node, SceneParseContext& ctx)
     env.radiance = as_rgb(*radiance, Range::non_negative());
     return env;
   }
-  const std::filesystem::path path = ctx.resolve(file->as_string());
+  const std::filesystem::path path = ctx.resolve(*file);
   env.image = load_environment_image(path, ctx.file, file->path());
   env.file = path.string();
   ctx.referenced_files.push_back(path);

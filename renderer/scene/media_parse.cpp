@@ -66,7 +66,7 @@ VdbMediumDesc parse_vdb(JsonReader& node, SceneParseContext& ctx) {
                    "emission_grid", "emission_scale", "emission_color"});
   VdbMediumDesc m;
   const JsonReader file = node.child("file");
-  const std::filesystem::path path = ctx.resolve(file.as_string());
+  const std::filesystem::path path = ctx.resolve(file);
   m.file = path.string();
   if (const auto grid = node.optional_child("grid")) m.grid = grid->as_string();
   m.density_scale = node.number("density_scale", m.density_scale, Range::non_negative());

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/json_parse.h"
+#include "common/scene_reference.h"
 #include "renderer/scene/aov_list.h"
 #include "renderer/scene/scene_parse.h"
 
@@ -189,10 +190,12 @@ std::string content_hash(const nlohmann::json& doc, const SceneParseContext& ctx
   return hash.hex();
 }
 
-SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem::path& file) {
+SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem::path& file,
+                                const SceneLoadOptions& options) {
   SceneParseContext ctx;
   ctx.file = file.string();
   ctx.base_dir = file.parent_path();
+  ctx.scene_dir_only = options.scene_dir_only;
   JsonReader root(doc, ctx.file, "");
   root.expect_object();
 
@@ -247,8 +250,12 @@ SceneDescription as_scene_error(Parse parse) {
 
 }  // namespace
 
-std::filesystem::path SceneParseContext::resolve(const std::string& relative) const {
-  const std::filesystem::path p(relative);
+std::filesystem::path SceneParseContext::resolve(const JsonReader& node) const {
+  const std::string ref = node.as_string();
+  if (scene_dir_only)
+    if (const std::string why = outside_reference_problem(ref); !why.empty())
+      node.fail("'" + ref + "' " + why);
+  const std::filesystem::path p(ref);
   return p.is_absolute() ? p : base_dir / p;
 }
 
@@ -263,13 +270,14 @@ uint32_t SceneParseContext::material(JsonReader& node, std::string_view key) con
                          "\" (known materials: " + (known.empty() ? "none" : known) + ")");
 }
 
-SceneDescription load_scene(const std::filesystem::path& file) {
+SceneDescription load_scene(const std::filesystem::path& file, const SceneLoadOptions& options) {
   return as_scene_error(
-      [&] { return parse_document(read_json_file(file, "the scene file"), file); });
+      [&] { return parse_document(read_json_file(file, "the scene file"), file, options); });
 }
 
-SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::path& file) {
-  return as_scene_error([&] { return parse_document(doc, file); });
+SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::path& file,
+                             const SceneLoadOptions& options) {
+  return as_scene_error([&] { return parse_document(doc, file, options); });
 }
 
 }  // namespace vesper

@@ -19,12 +19,22 @@ class SceneError : public JsonError {
   using JsonError::JsonError;
 };
 
+struct SceneLoadOptions {
+  // Every file the scene references must be inside the scene's directory
+  // (relative, no '..' segment): a farm task's scene must not read the
+  // worker's own files (`vesper render --scene-dir-only`). Off for a local
+  // render of one's own scene, where absolute paths are fine.
+  bool scene_dir_only = false;
+};
+
 // Loads the scene, all meshes and environment images it references. Throws
 // SceneError for anything invalid, before any rendering starts.
-SceneDescription load_scene(const std::filesystem::path& file);
+SceneDescription load_scene(const std::filesystem::path& file,
+                            const SceneLoadOptions& options = {});
 
 // Same from an already-parsed document; relative paths resolve against
 // `file.parent_path()`, and `file` names the scene in messages.
-SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::path& file);
+SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::path& file,
+                             const SceneLoadOptions& options = {});
 
 }  // namespace vesper

@@ -55,7 +55,7 @@ MeshShapeDesc parse_mesh(JsonReader& node, SceneParseContext& ctx) {
   }
   MeshShapeDesc mesh;
   if (file) {
-    const std::filesystem::path path = ctx.resolve(file->as_string());
+    const std::filesystem::path path = ctx.resolve(*file);
     mesh = load_mesh_file(path, ctx.file, file->path());
     ctx.referenced_files.push_back(path);
   } else {

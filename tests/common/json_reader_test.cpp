@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/json_parse.h"
+#include "common/utf8.h"
 #include "tests/common/temp_dir.h"
 
 namespace vesper {
@@ -124,6 +125,35 @@ TEST(ParseJson, DuplicateKeysAreRejectedAtTheirPath) {
   EXPECT_EQ(error_of([] { parse_json(R"({"a": [{"r": 1, "r": 2}]})", "f.json"); }),
             "f.json: /a/0/r: duplicate key 'r'");
   EXPECT_EQ(parse_json(R"({"a": [{"r": 1}, {"r": 2}]})", "f.json")["a"][1]["r"], 2);
+}
+
+// One depth limit for every document, checked while parsing: nothing deep is
+// ever built (a recipe nested 100 000 deep overflowed the stack when copied).
+TEST(ParseJson, NestingDeeperThanTheLimitIsRefused) {
+  const auto nested = [](int depth) {
+    return std::string(size_t(depth), '[') + std::string(size_t(depth), ']');
+  };
+  EXPECT_TRUE(parse_json(nested(kMaxJsonDepth), "f.json").is_array());
+  const std::string err = error_of([&] { parse_json(nested(kMaxJsonDepth + 1), "f.json"); });
+  EXPECT_NE(err.find("nested deeper than 100 levels"), std::string::npos) << err;
+  EXPECT_EQ(err.rfind("f.json: /0/0/0", 0), 0u) << err;
+  for (const std::string& deep : {nested(100000), "{\"a\": " + nested(100000) + "}",
+                                  std::string(100000, '[') /* unterminated */}) {
+    const std::string e = error_of([&] { parse_json(deep, "deep.json"); });
+    EXPECT_NE(e.find("nested deeper than"), std::string::npos) << e.substr(0, 200);
+  }
+  std::string objects;
+  for (int i = 0; i < 100000; ++i) objects += "{\"k\":";
+  EXPECT_NE(error_of([&] { parse_json(objects, "o.json"); }).find("nested deeper"),
+            std::string::npos);
+}
+
+// Syntax errors quote what the parser read last: bytes that are not UTF-8
+// are replaced, so the message can be sent as JSON (a 500 before).
+TEST(ParseJson, ErrorsAboutInvalidUtf8AreValidUtf8) {
+  const std::string err = error_of([] { parse_json("{\"name\": \"a\xff\xfe\"}", "f.json"); });
+  EXPECT_NE(err.find("invalid JSON"), std::string::npos) << err;
+  EXPECT_TRUE(is_valid_utf8(err)) << err;
 }
 
 TEST(ParseJson, FilesThatCannotBeReadAreNamed) {

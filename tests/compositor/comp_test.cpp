@@ -248,7 +248,7 @@ TEST(Recipe, ValidationErrorsNameTheJsonPath) {
       {[](json& j) {
          j["grade"] = {{"cdl", {{"power", {1, 0, 1}}}}};
        },
-       "comp.json: /grade/cdl/power/1: expected a positive number"},
+       "comp.json: /grade/cdl/power/1: expected a number in (0, 100]"},
       {[](json& j) {
          j["grade"] = {{"look_lut", "missing.cube"}};
        },
@@ -585,6 +585,36 @@ TEST_F(CompCli, ErrorsExitTwoAndLeaveNothingBehind) {
   // Without --config: $OCIO, else the bundled config.
   const auto r = run(q(dir_ / "in.exr") + out);
   EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+// Hostile recipes and grades: a recipe nested 100 000 deep (it overflowed the
+// stack) is refused by depth; absurd CDL parameters are refused naming the
+// flag; bounded ones that still overflow a bright image to infinity stop the
+// frame instead of writing NaN/Inf with exit 0.
+TEST_F(CompCli, DeepRecipesAndOverflowingGradesAreRefused) {
+  const std::string out = " -o " + q(dir_ / "out/c.png") + " --exr " + q(dir_ / "out/c.exr");
+  std::ofstream(dir_ / "deep.json") << std::string(100000, '[') << std::string(100000, ']');
+  std::ofstream(dir_ / "deep-object.json")
+      << "{\"inputs\": " << std::string(100000, '[') << std::string(100000, ']') << "}";
+  struct Case {
+    std::string args, expected;
+  };
+  const std::vector<Case> cases = {
+      {q(dir_ / "deep.json"), "nested deeper than 100 levels"},
+      {q(dir_ / "deep-object.json"), "nested deeper than 100 levels"},
+      {q(dir_ / "in.exr") + " --cdl-power 3.4e38" + out, "--cdl-power"},
+      {q(dir_ / "in.exr") + " --saturation 3.4e38" + out, "--saturation"},
+      {q(dir_ / "in.exr") + " --cdl-slope 1e300" + out, "--cdl-slope"},
+      {q(dir_ / "in.exr") + " --layer fog:1e300" + out, "--layer fog:1e300"},
+      {q(dir_ / "in.exr") + " --layer fog:1000000 --cdl-slope 1000 --cdl-power 100" + out,
+       "not finite (NaN or infinity)"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_TRUE(files_in(dir_ / "out").empty()) << c.args;
+  }
 }
 
 // The shipped night-room recipe is valid and runs (on a synthetic frame with

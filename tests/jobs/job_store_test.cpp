@@ -22,7 +22,7 @@ class JobStoreTest : public ::testing::Test {
   fs::path db() const { return dir_ / "jobs.sqlite"; }
   static JobSpec spec(std::vector<int> frames, int spp = 8, int split = 0, int priority = 50,
                       int attempts = 3) {
-    return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts, {},
+    return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts, {}, {},
                    {},    {}};
   }
   test::TempDir dir_{"jobs"};
@@ -39,7 +39,7 @@ TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {
   EXPECT_EQ(tasks[2].sample_end, 10);  // the last range is short
   EXPECT_EQ(tasks[3].frame, 2);
   EXPECT_EQ(s.job(j)->queued, 6);
-  EXPECT_EQ(s.schema_version(), 7);
+  EXPECT_EQ(s.schema_version(), 8);
 }
 
 TEST_F(JobStoreTest, LeasesByPriorityThenAgeThenFrame) {
@@ -384,7 +384,7 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
 )sql");
   }
   JobStore s(db());
-  EXPECT_EQ(s.schema_version(), 7);
+  EXPECT_EQ(s.schema_version(), 8);
   EXPECT_EQ(s.job(1)->name, "old");
   EXPECT_TRUE(s.assets(1).empty());
   EXPECT_TRUE(s.frame(1, 1)->complete());
@@ -403,4 +403,36 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
 }
 
 }  // namespace
+TEST_F(JobStoreTest, ALeaseCarriesItsJobsTaskTimeout) {
+  JobStore s(db());
+  JobSpec timed = spec({1});
+  timed.task_timeout = 90;
+  s.submit(timed, 0);
+  s.submit(spec({1}), 0);
+  EXPECT_EQ(s.lease("w", 1)->task_timeout, 90);
+  EXPECT_FALSE(s.lease("w", 1)->task_timeout);  // unset: the server's default applies
+  JobSpec bad = spec({1});
+  bad.task_timeout = 0;
+  EXPECT_THROW(s.submit(bad, 0), StoreError);
+}
+
+// A server that was down renews the leases it finds when it starts: no
+// worker could heartbeat meanwhile, so none is lost (or charged) for that.
+TEST_F(JobStoreTest, RenewedLeasesOutliveTheServersAbsence) {
+  JobStore s(db(), StoreOptions{60, 3});
+  s.submit(spec({1, 2}), 0);
+  const auto held = s.lease("w", 0);  // expires at 60
+  ASSERT_TRUE(held);
+  EXPECT_EQ(s.renew_leases(100), 1);  // a restart at 100, after a 100 s outage
+  EXPECT_EQ(s.expire_leases(150), 0);
+  EXPECT_EQ(s.heartbeat(held->lease_id, 150), HeartbeatAnswer::KeepRunning);
+  EXPECT_TRUE(s.complete(held->lease_id, "r", 151));
+  EXPECT_EQ(s.tasks(1)[0].attempts, 0);
+  // A lease nobody renews still expires, counted as before.
+  const auto lost = s.lease("w", 200);
+  EXPECT_EQ(s.expire_leases(261), 1);
+  EXPECT_EQ(s.tasks(1)[1].attempts, 1);
+  EXPECT_FALSE(s.complete(lost->lease_id, "r", 262));
+}
+
 }  // namespace vesper

@@ -59,7 +59,8 @@ TEST(WorkerMessagesTest, LeaseResponseIsTheServersAnswer) {
 }
 
 TEST(WorkerMessagesTest, SmallMessagesKeepTheirKeys) {
-  EXPECT_EQ(json(RegisterRequest{"host"}).dump(), R"({"name":"host"})");
+  EXPECT_EQ(json(RegisterRequest{"host", ""}).dump(), R"({"name":"host"})");
+  EXPECT_EQ(json(RegisterRequest{"host", "w"}).dump(), R"({"name":"host","worker_id":"w"})");
   EXPECT_EQ(json(RegisterResponse{"w"}).dump(), R"({"worker_id":"w"})");
   EXPECT_EQ(json(HeartbeatRequest{"L", 0.5}).dump(), R"({"lease_id":"L","progress":0.5})");
   EXPECT_EQ(json(HeartbeatResponse{HeartbeatAnswer::KeepRunning}).dump(),

@@ -189,6 +189,7 @@ TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
   submit.layer_variance = true;
   submit.seed = 7;
   submit.scale = 0.25;
+  submit.task_timeout = 3600;
   EXPECT_EQ(keys_of(nlohmann::json(submit)), properties(doc, "SubmitRequest"));
 
   LeaseResponse lease;
@@ -199,6 +200,7 @@ TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
   lease.layer_variance = true;
   lease.seed = 7;
   lease.scale = 0.5;
+  lease.task_timeout = 3600;
   EXPECT_EQ(keys_of(nlohmann::json(lease)), properties(doc, "LeaseResponse"));
   EXPECT_EQ(keys_of(nlohmann::json(lease.task)), properties(doc, "LeasedTask"));
 

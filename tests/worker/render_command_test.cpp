@@ -47,13 +47,14 @@ TEST(RenderCommand, FollowsTheTaskAndTheWorkerConfig) {
   const Case cases[] = {
       {lease(7, 16, 0, 16), 0, ".exr",
        "/opt/vesper/bin/vesper render s.json -o out --spp 16 --sample-begin 0 --sample-end 16 "
-       "--frame 7"},
+       "--frame 7 --scene-dir-only"},
       {lease(3, 16, 4, 8), 2, ".vpartial",
        "/opt/vesper/bin/vesper render s.json -o out --spp 16 --sample-begin 4 --sample-end 8 "
-       "--frame 3 --partial --threads 2"},
+       "--frame 3 --scene-dir-only --partial --threads 2"},
       {with_overrides(lease(4, 32, 0, 32)), 1, ".exr",
        "/opt/vesper/bin/vesper render s.json -o out --spp 32 --sample-begin 0 --sample-end 32 "
-       "--frame 4 --aov variance,albedo --layer-variance --seed 11 --scale 0.125 --threads 1"},
+       "--frame 4 --scene-dir-only --aov variance,albedo --layer-variance --seed 11 --scale 0.125 "
+       "--threads 1"},
   };
   for (const Case& c : cases) {
     EXPECT_EQ(render_output_extension(c.lease), c.extension);
@@ -68,10 +69,11 @@ TEST(RenderCommand, PassesTheTasksBudget) {
   split.noise_target = 0.01 * std::sqrt(4.0);
   split.min_spp = 16;
   split.time_limit = 7.5;
-  EXPECT_EQ(command_line(render_command(split, config(0), "s.json", "out")),
-            "/opt/vesper/bin/vesper render s.json -o out --spp 256 --sample-begin 64 "
-            "--sample-end 128 --frame 2 --partial --noise-target 0.02 --max-spp 256 "
-            "--min-spp 16 --time-limit 7.5");
+  EXPECT_EQ(
+      command_line(render_command(split, config(0), "s.json", "out")),
+      "/opt/vesper/bin/vesper render s.json -o out --spp 256 --sample-begin 64 "
+      "--sample-end 128 --frame 2 --scene-dir-only --partial --noise-target 0.02 --max-spp 256 "
+      "--min-spp 16 --time-limit 7.5");
   protocol::LeaseResponse whole = lease(1, 64, 0, 64);
   whole.noise_target = 0.1 / std::sqrt(0.36);  // not a short decimal
   const auto argv = render_command(whole, config(0), "s.json", "out.exr");
