@@ -26,8 +26,7 @@ void add_equiangular(PathContext& ctx, const Ray& ray, const std::vector<Majoran
   if (es.value.is_black()) return;
   const int group = ctx.scene.light_group[es.light];
   if (depth == 0 && ctx.options.record) {
-    ctx.result.radiance += es.value;
-    ctx.options.record->add_as(FirstEvent::Volume, false, group, es.value);
+    ctx.add_as(FirstEvent::Volume, false, group, es.value);
   } else {
     ctx.add(es.value, depth + 1, group);
   }

@@ -143,6 +143,7 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     if (!scatter_at_surface<kMedia>(ctx, *hit, depth, path)) break;
     if (!russian_roulette(depth, options, sampler, path.throughput)) break;
   }
+  ctx.clamp_indirect();
   return result;
 }
 

@@ -66,6 +66,9 @@ struct RenderDesc {
   std::optional<double> noise_target;
   std::optional<int> min_spp, max_spp;
   std::optional<double> time_limit;  // seconds of wall clock, checked after each pass
+  // render.clamp: the largest RGB component a camera sample's indirect light
+  // may have (integrator/path_context.h). Biased; unset = off.
+  std::optional<double> clamp;
 };
 
 struct DiffuseMaterialDesc {
