@@ -164,7 +164,7 @@ struct RegressCommandOptions {
   std::string goldens;
   bool update_goldens = false;
   bool local = false;
-  std::optional<std::string> server;
+  FarmOptions farm;  // --server URL (the farm mode), --token, --config
   std::optional<std::string> report;
   std::optional<unsigned long long> seed;
   std::optional<std::string> history;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli/farm_client.h"
+#include "protocol/job_messages.h"
 
 namespace vesper::cli {
 
@@ -16,6 +17,11 @@ struct FetchedFrames {
 
 // Writes every ready frame of `job` into `dir` (created if needed); each file
 // appears complete or not at all, and is checked against its blob's sha256.
+// Downloads ready `frame` of `job` to `file` (whole or not at all), checked
+// against its blob's sha256. Throws FarmClientError.
+void download_frame(FarmClient& client, long long job, const protocol::FrameInfo& frame,
+                    const std::filesystem::path& file);
+
 FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesystem::path& dir);
 
 }  // namespace vesper::cli

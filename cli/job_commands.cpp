@@ -61,6 +61,17 @@ std::map<std::string, std::string> worker_names(FarmClient& c) {
 
 }  // namespace
 
+void download_frame(FarmClient& client, long long job, const protocol::FrameInfo& frame,
+                    const std::filesystem::path& file) {
+  client.download(protocol::frame_path(job, frame.frame), file);
+  if (frame.blob.empty()) return;
+  const auto sha = sha256_file(file);
+  if (!sha || *sha != frame.blob) {
+    std::filesystem::remove(file);
+    throw FarmClientError(file.string() + ": downloaded frame does not match its hash");
+  }
+}
+
 FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesystem::path& dir) {
   const std::string name =
       client.get_json(protocol::job_path(job)).get<protocol::JobSummary>().name;
@@ -74,14 +85,7 @@ FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesys
       continue;
     }
     const std::filesystem::path file = dir / fmt::format("{}.{:04d}.exr", name, f.frame);
-    client.download(protocol::frame_path(job, f.frame), file);
-    if (!f.blob.empty()) {
-      const auto sha = sha256_file(file);
-      if (!sha || *sha != f.blob) {
-        std::filesystem::remove(file);
-        throw FarmClientError(file.string() + ": downloaded frame does not match its hash");
-      }
-    }
+    download_frame(client, job, f, file);
     out.written.push_back(file);
   }
   return out;

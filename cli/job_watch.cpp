@@ -96,48 +96,67 @@ protocol::FrameList wait_for_merges(FarmClient& client, int64_t job) {
   }
 }
 
-protocol::JobDetail wait_for_job(FarmClient& client, int64_t job, bool show_progress,
-                                 const std::function<bool()>& should_stop) {
-  const std::string path = protocol::job_path(job);
-  Progress progress("job " + std::to_string(job));
+namespace {
+
+// Whether waiting for `j` is over: finished, canceled, or left with queued
+// work no registered worker may take (each is blocklisted for this job),
+// which would be waited for forever (said as an error).
+bool wait_is_over(FarmClient& client, const protocol::JobDetail& j) {
+  if (j.summary.finished || j.summary.state == "canceled") return true;
+  const protocol::JobCounts& c = j.summary.counts;
+  if (c.queued == 0 || c.leased > 0 || j.blocked_workers.empty() || !all_workers_blocked(client, j))
+    return false;
+  spdlog::error(
+      "job {}: every registered worker is blocklisted for this job after failing "
+      "its tasks, so its {} queued tasks will not run; see `vesper logs {}`, fix "
+      "the cause, then `vesper retry {}`",
+      j.summary.id, c.queued, j.summary.id, j.summary.id);
+  return true;
+}
+
+}  // namespace
+
+std::vector<protocol::JobDetail> wait_for_jobs(FarmClient& client, const std::vector<int64_t>& jobs,
+                                               const std::string& label, bool show_progress,
+                                               const std::function<bool()>& should_stop) {
+  Progress progress(label);
   std::set<int64_t> reported;
+  std::vector<protocol::JobDetail> last(jobs.size());
+  std::vector<bool> over(jobs.size(), false);
   auto delay = std::chrono::milliseconds(100);
   for (;;) {
-    nlohmann::json answer;
     try {
-      answer = client.get_json(path);
+      for (size_t i = 0; i < jobs.size(); ++i) {
+        if (over[i]) continue;
+        last[i] = client.get_json(protocol::job_path(jobs[i])).get<protocol::JobDetail>();
+        report_failed_tasks(last[i], reported);
+        over[i] = wait_is_over(client, last[i]);
+      }
     } catch (const FarmClientError& e) {
       // The server may be restarting: keep waiting, but say so.
       spdlog::warn("{} (retrying)", e.what());
       std::this_thread::sleep_for(std::chrono::seconds(1));
       continue;
     }
-    const auto j = answer.get<protocol::JobDetail>();
-    report_failed_tasks(j, reported);
-    const int total = j.summary.total;
-    const protocol::JobCounts& c = j.summary.counts;
+    double settled = 0;
+    size_t total = 0;
+    for (const protocol::JobDetail& j : last) settled += tasks_settled(j), total += j.summary.total;
     // In thousandths, so that running tasks move the bar.
-    if (show_progress && total > 0)
-      progress.update(size_t(tasks_settled(j) * 1000), size_t(total) * 1000);
-    if (j.summary.finished || j.summary.state == "canceled" || (should_stop && should_stop())) {
+    if (show_progress && total > 0) progress.update(size_t(settled * 1000), total * 1000);
+    if (std::all_of(over.begin(), over.end(), [](bool b) { return b; }) ||
+        (should_stop && should_stop())) {
       if (show_progress) progress.finish();
-      return j;
-    }
-    // Queued work no registered worker may take (each is blocklisted for this
-    // job) would be waited for forever: say so and stop waiting.
-    if (c.queued > 0 && c.leased == 0 && !j.blocked_workers.empty() &&
-        all_workers_blocked(client, j)) {
-      if (show_progress) progress.finish();
-      spdlog::error(
-          "job {}: every registered worker is blocklisted for this job after failing "
-          "its tasks, so its {} queued tasks will not run; see `vesper logs {}`, fix "
-          "the cause, then `vesper retry {}`",
-          job, c.queued, job, job);
-      return j;
+      return last;
     }
     std::this_thread::sleep_for(delay);
     delay = std::min(delay * 2, std::chrono::milliseconds(500));
   }
+}
+
+protocol::JobDetail wait_for_job(FarmClient& client, int64_t job, bool show_progress,
+                                 const std::function<bool()>& should_stop) {
+  return wait_for_jobs(client, {job}, "job " + std::to_string(job), show_progress, should_stop)
+      .front();
 }
 
 }  // namespace vesper::cli

@@ -17,6 +17,12 @@ namespace vesper::cli {
 // `should_stop` (optional) is asked between polls: true returns at once.
 protocol::JobDetail wait_for_job(FarmClient& client, int64_t job, bool show_progress = true,
                                  const std::function<bool()>& should_stop = {});
+// The same for several jobs at once (a batch: `vesper regress --server`),
+// under one progress bar named `label` (tasks of every job); returns each
+// job's last answer, in the order of `jobs`.
+std::vector<protocol::JobDetail> wait_for_jobs(FarmClient& client, const std::vector<int64_t>& jobs,
+                                               const std::string& label, bool show_progress = true,
+                                               const std::function<bool()>& should_stop = {});
 
 // The job's frames once none is waiting for its merge on the server (frames
 // whose tasks are all done may still be merging: a merge reads and writes

@@ -347,18 +347,32 @@ void add_regress(CLI::App& app, Dispatch& dispatch) {
   r->add_flag("--update-goldens", o->update_goldens,
               "Render and write the goldens; compare nothing");
   auto* local = r->add_flag("--local", o->local, "Render here, in child processes (the default)");
-  r->add_option("--server", o->server, "Render on the farm at this URL")->excludes(local);
+  auto* server =
+      r->add_option("--server", o->farm.server, "Render on the farm at this URL, as one batch")
+          ->excludes(local);
+  r->add_option("--token", o->farm.token,
+                "With --server: bearer token (default $VESPER_TOKEN, else the tokens.json of the "
+                "server on this machine)")
+      ->needs(server);
+  r->add_option("--config", o->farm.config, "With --server: farm settings (TOML)")
+      ->check(CLI::ExistingFile)
+      ->needs(server);
   r->add_option("--report", o->report, "Folder for report.json and index.html");
   r->add_option("--seed", o->seed, "Random seed of every render (default: the scenes')")
       ->check(at_least(0));
   r->add_option("--history", o->history, "SQLite history database, for trends");
+  // Local renders only: on the farm the workers' renderer and threads are used,
+  // and a task renders once.
   r->add_option("--renderer", o->renderer,
                 "A `vesper render`-compatible program to run instead of this binary")
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingFile)
+      ->excludes(server);
   r->add_option("--repeats", o->repeats, "Renders per scene, for the timing (default 3)")
-      ->check(CLI::Range(1, 100));
+      ->check(CLI::Range(1, 100))
+      ->excludes(server);
   r->add_option("--threads", o->threads, "Threads per render (default: all cores)")
-      ->check(at_least(1));
+      ->check(at_least(1))
+      ->excludes(server);
   add_quiet(r, &o->quiet);
   dispatch.on(r, [o] { return run_regress(*o); });
 }

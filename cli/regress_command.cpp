@@ -10,10 +10,12 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/farm_client.h"
 #include "cli/farm_setup.h"
 #include "cli/progress.h"
+#include "cli/regress_farm.h"
 #include "cli/regress_render.h"
-#include "jobs/frame_range.h"
+#include "protocol/paths.h"
 #include "regress/history.h"
 #include "regress/load_frame.h"
 #include "regress/median.h"
@@ -29,6 +31,11 @@ namespace {
 namespace fs = std::filesystem;
 using regress::Verdict;
 
+// Why a farm run's render times are shown and not judged (docs/regression.md).
+constexpr const char* kFarmTimeNote =
+    "shown, not judged: farm workers differ in hardware and load, and a farm task renders once "
+    "(identical tasks are reused), so there are no repeated timings to take the fastest of";
+
 std::string utc_now() {
   const std::time_t t = std::time(nullptr);
   char buf[32];
@@ -36,35 +43,53 @@ std::string utc_now() {
   return buf;
 }
 
-// One scene and frame: render, then write the golden or compare with it.
-regress::SceneResult regress_frame(const regress::SuiteScene& scene, int frame,
-                                   const std::string& label, const RegressCommandOptions& o,
-                                   const RegressRenderSettings& settings,
-                                   const regress::History* history) {
-  const fs::path goldens(o.goldens);
-  const SuiteRender render = render_suite_frame(scene, frame, label, settings);
-  regress::SceneResult result;
-  result.name = label;
-  if (!render.error.empty()) {
-    return regress::error_result(label, render.error);
-  }
-  if (o.update_goldens) {
-    write_golden(render, goldens);
-    result.reasons.push_back("golden written: " + golden_image(goldens, label).string());
-    result.new_seconds = regress::median(render.seconds);
-    result.new_seconds_repeats = render.seconds;
-    return result;
-  }
-  const std::vector<std::string>* layers = scene.layers ? &*scene.layers : nullptr;
-  result = regress::compare_files(label, golden_image(goldens, label), render.exr, layers,
-                                  scene.thresholds);
+// Render time: judged locally against a local golden (its sidecar's wall
+// time); for a farm render both EXRs' own render times are shown, not judged
+// (docs/regression.md, "Render time on the farm").
+void judge_time(regress::SceneResult& result, const SuiteRender& render,
+                const regress::SuiteScene& scene, const fs::path& goldens,
+                const regress::History* history) {
   result.new_seconds = regress::median(render.seconds);
   result.new_seconds_repeats = render.seconds;
-  if (const auto g = golden_seconds(goldens, label)) result.golden_seconds = *g;
+  if (render.on_farm) {  // like with like: the golden EXR's own render time
+    result.golden_seconds = exr_render_seconds(golden_image(goldens, render.label)).value_or(0);
+    return;
+  }
+  const std::optional<GoldenTime> golden = golden_seconds(goldens, render.label);
+  if (golden) result.golden_seconds = golden->seconds;
+  if (result.verdict == Verdict::Error || !golden) return;
+  if (golden->on_farm) {
+    spdlog::warn("{}: render time not judged: the golden was timed on the farm", render.label);
+    return;
+  }
   std::optional<double> history_seconds;
-  if (history) history_seconds = history->median_seconds(label, 10);
-  if (result.verdict != Verdict::Error)
-    regress::judge_render_time(result, scene.thresholds, history_seconds);
+  if (history) history_seconds = history->median_seconds(render.label, 10);
+  regress::judge_render_time(result, scene.thresholds, history_seconds);
+}
+
+// One scene and frame, rendered: write the golden or compare with it.
+regress::SceneResult judge_frame(const SuiteFrame& f, const SuiteRender& render,
+                                 const RegressCommandOptions& o, const regress::History* history) {
+  const fs::path goldens(o.goldens);
+  if (!render.error.empty()) {
+    regress::SceneResult error = regress::error_result(f.label, render.error);
+    error.reused = render.reused;
+    return error;
+  }
+  regress::SceneResult result;
+  if (o.update_goldens) {
+    write_golden(render, goldens);
+    result.name = f.label;
+    result.reasons.push_back("golden written: " + golden_image(goldens, f.label).string());
+    result.new_seconds = regress::median(render.seconds);
+    result.new_seconds_repeats = render.seconds;
+  } else {
+    const std::vector<std::string>* layers = f.scene->layers ? &*f.scene->layers : nullptr;
+    result = regress::compare_files(f.label, golden_image(goldens, f.label), render.exr, layers,
+                                    f.scene->thresholds);
+    judge_time(result, render, *f.scene, goldens, history);
+  }
+  result.reused = render.reused;
   return result;
 }
 
@@ -79,35 +104,15 @@ void print_result(const regress::SceneResult& s) {
                   100 * weakest);
     line += buf;
   }
+  if (s.reused) line += "  (reused: not re-rendered)";
   std::printf("%s\n", line.c_str());
   for (const std::string& r : s.reasons) std::printf("    %s\n", r.c_str());
   for (const auto& l : s.layers)
     for (const std::string& r : l.reasons) std::printf("    %s: %s\n", l.layer.c_str(), r.c_str());
 }
 
-// Every (scene, frame) of the suite, with the label its files get.
-struct SuiteFrame {
-  const regress::SuiteScene* scene;
-  int frame;
-  std::string label;
-};
-
-std::vector<SuiteFrame> suite_frames(const regress::Suite& suite) {
-  std::vector<SuiteFrame> out;
-  for (const regress::SuiteScene& s : suite.scenes) {
-    const std::vector<int> frames = parse_frame_range(s.frames);  // load_suite checked it
-    for (int f : frames)
-      out.push_back({&s, f, frames.size() == 1 ? s.name : s.name + "." + std::to_string(f)});
-  }
-  return out;
-}
-
 // Bad input before any render: exit 2 with the reason.
 std::optional<regress::Suite> check_inputs(const RegressCommandOptions& o) {
-  if (o.server) {
-    spdlog::error("--server: the farm mode of vesper regress is not built yet; use --local");
-    return std::nullopt;
-  }
   std::optional<regress::Suite> suite;
   try {
     suite = regress::load_suite(o.suite);
@@ -146,11 +151,69 @@ int write_outputs(const regress::RunResult& run, const RegressCommandOptions& o,
   return 0;
 }
 
+// The farm at --server, checked before anything is submitted: nullptr (exit
+// 2) when it does not answer or refuses the token.
+std::unique_ptr<FarmClient> connect_farm(const RegressCommandOptions& o) {
+  try {
+    const FarmSettings settings = load_farm_settings(o.farm.config);
+    const std::string url = resolve_server_url(settings, o.farm.server);
+    // First whether it answers at all (no token needed), then whether it takes ours.
+    FarmClient(url, "").get_text(std::string(protocol::paths::kHealthz));
+    auto client = std::make_unique<FarmClient>(
+        url, resolve_token(settings, url, o.farm.token, TokenRole::Submitter));
+    client->get_json(std::string(protocol::paths::kWorkers));  // answers, takes the token
+    return client;
+  } catch (const std::exception& e) {
+    spdlog::error("--server {}: {}", o.farm.server.value_or(""), e.what());
+    return nullptr;
+  }
+}
+
+// --local: each frame rendered here (repeated for the timing), then judged.
+std::vector<regress::SceneResult> regress_locally(const std::vector<SuiteFrame>& frames,
+                                                  const RegressCommandOptions& o,
+                                                  const fs::path& out_dir,
+                                                  const regress::History* history) {
+  RegressRenderSettings settings;
+  settings.renderer = o.renderer ? fs::path(*o.renderer) : self_executable();
+  settings.seed = o.seed;
+  settings.threads = o.threads;
+  settings.repeats = std::max(1, o.repeats);
+  settings.out_dir = out_dir;
+  std::vector<regress::SceneResult> results;
+  Progress progress("regress");
+  for (size_t i = 0; i < frames.size(); ++i) {
+    if (!o.quiet) progress.update(i, frames.size());
+    const SuiteFrame& f = frames[i];
+    const SuiteRender render = render_suite_frame(*f.scene, f.frame, f.label, settings);
+    results.push_back(judge_frame(f, render, o, history));
+  }
+  if (!o.quiet) progress.update(frames.size(), frames.size());
+  progress.finish();
+  return results;
+}
+
+// --server: the suite rendered on the farm as one batch, then each frame judged.
+std::vector<regress::SceneResult> regress_on_farm(FarmClient& client, const regress::Suite& suite,
+                                                  const std::vector<SuiteFrame>& frames,
+                                                  const RegressCommandOptions& o,
+                                                  const fs::path& out_dir,
+                                                  const regress::History* history) {
+  const FarmBatchSettings settings{out_dir, o.seed, !o.quiet};
+  const std::vector<SuiteRender> renders = render_suite_on_farm(client, suite, frames, settings);
+  std::vector<regress::SceneResult> results;
+  for (size_t i = 0; i < frames.size(); ++i)
+    results.push_back(judge_frame(frames[i], renders[i], o, history));
+  return results;
+}
+
 }  // namespace
 
 int run_regress(const RegressCommandOptions& o) {
   const std::optional<regress::Suite> suite = check_inputs(o);
   if (!suite) return 2;
+  std::unique_ptr<FarmClient> farm;
+  if (o.farm.server && !(farm = connect_farm(o))) return 2;
   std::unique_ptr<regress::History> history;
   try {
     if (o.history) history = std::make_unique<regress::History>(*o.history);
@@ -158,36 +221,31 @@ int run_regress(const RegressCommandOptions& o) {
     spdlog::error("--history {}: {}", *o.history, e.what());
     return 2;
   }
-  RegressRenderSettings settings;
-  settings.renderer = o.renderer ? fs::path(*o.renderer) : self_executable();
-  settings.seed = o.seed;
-  settings.threads = o.threads;
-  settings.repeats = std::max(1, o.repeats);
   // The new renders stay beside the report (its pictures come from them), else in a temp folder.
   const bool keep = o.report.has_value();
-  settings.out_dir =
+  const fs::path out_dir =
       keep ? fs::path(*o.report) / "renders"
            : fs::temp_directory_path() / ("vesper-regress-" + std::to_string(::getpid()));
-  fs::create_directories(settings.out_dir);
+  fs::create_directories(out_dir);
 
   regress::RunResult run;
   run.suite = o.suite;
   run.started_at = utc_now();
   run.renderer_version = VESPER_VERSION;
   const std::vector<SuiteFrame> frames = suite_frames(*suite);
-  Progress progress("regress");
-  for (size_t i = 0; i < frames.size(); ++i) {
-    if (!o.quiet) progress.update(i, frames.size());
-    const SuiteFrame& f = frames[i];
-    regress::SceneResult r = regress_frame(*f.scene, f.frame, f.label, o, settings, history.get());
-    run.scenes.push_back(std::move(r));
+  if (farm) {
+    run.server = farm->url();
+    run.render_time_note = kFarmTimeNote;
+    run.scenes = regress_on_farm(*farm, *suite, frames, o, out_dir, history.get());
+  } else {
+    run.scenes = regress_locally(frames, o, out_dir, history.get());
   }
-  if (!o.quiet) progress.update(frames.size(), frames.size());
-  progress.finish();
   regress::summarize_run(run);
   for (const auto& s : run.scenes) print_result(s);
+  if (!run.render_time_note.empty())
+    std::printf("render times: %s\n", run.render_time_note.c_str());
   const int written = write_outputs(run, o, history.get());
-  if (!keep) fs::remove_all(settings.out_dir);
+  if (!keep) fs::remove_all(out_dir);
   if (written != 0) return written;
   std::printf("%s: %s\n", o.suite.c_str(), regress::verdict_name(run.verdict));
   return run.verdict == Verdict::Pass ? 0 : 1;

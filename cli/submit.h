@@ -9,6 +9,7 @@
 #include "cli/farm_client.h"
 #include "cli/farm_config.h"
 #include "jobs/render_budget.h"
+#include "jobs/render_overrides.h"
 
 namespace vesper::cli {
 
@@ -23,6 +24,9 @@ struct JobRequest {
   // Noise target, min/max spp, time limit per frame; each unset = the
   // scene's render.* (docs/farm.md, "Noise targets and time limits").
   BudgetRequest sampling;
+  // AOVs, per-layer variance, seed, film scale of every render (docs/farm.md,
+  // "Render overrides"); unset = as the scene says.
+  RenderOverrides overrides;
 };
 
 // A job request that does not fit together (min spp above max spp, a min spp

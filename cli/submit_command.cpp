@@ -76,7 +76,7 @@ JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
   namespace f = protocol::field;
   root.allow_keys({"format", f::kScene, f::kName, f::kFrames, f::kSpp, f::kSamplesPerTask,
                    f::kPriority, f::kMaxAttempts, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
-                   f::kTimeLimit});
+                   f::kTimeLimit, f::kAovs, f::kLayerVariance, f::kSeed, f::kScale});
   const std::filesystem::path scene = root.string("scene");
   r.scene = scene.is_relative() ? file.parent_path() / scene : scene;
   r.name = root.has("name") ? root.string("name") : default_job_name(r.scene);
@@ -92,6 +92,7 @@ JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
   if (keys.budget.min_spp) b.budget.min_spp = keys.budget.min_spp;
   if (keys.max_spp) b.max_spp = keys.max_spp;
   if (keys.budget.time_limit) b.budget.time_limit = keys.budget.time_limit;
+  r.overrides = read_render_overrides(root);
   return r;
 }
 
@@ -160,6 +161,10 @@ Submitted submit_job(FarmClient& client, const JobRequest& request, bool dry_run
   body.min_spp = r.sampling.budget.min_spp;
   body.max_spp = r.sampling.max_spp;
   body.time_limit = r.sampling.budget.time_limit;
+  body.aovs = r.overrides.aovs;
+  body.layer_variance = r.overrides.layer_variance;
+  body.seed = r.overrides.seed;
+  body.scale = r.overrides.scale;
 
   std::string path(protocol::paths::kJobs);
   if (dry_run) path += "?" + std::string(protocol::kDryRunParam) + "=1";

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "jobs/render_budget.h"
+#include "jobs/render_overrides.h"
 
 namespace vesper {
 
@@ -40,6 +41,7 @@ struct JobSpec {
   int max_attempts = 3;
   std::vector<Asset> assets;  // files the scene references, in submission order
   RenderBudget budget;        // noise target, min spp, time limit of each frame
+  RenderOverrides overrides;  // AOVs, per-layer variance, seed, film scale of every render
 };
 
 enum class TaskState { Queued, Leased, Done, Failed, Canceled, Paused };
@@ -69,6 +71,7 @@ struct Lease {
   int spp = 0;
   std::vector<Asset> assets;  // the job's assets
   RenderBudget budget;        // this task's share of its frame's (task_budget)
+  RenderOverrides overrides;  // the job's
 };
 
 // What a frame's output says of its noise (its EXR's vesper:* metadata);

@@ -1,6 +1,7 @@
 #include "jobs/job_store.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <random>
 
 #include "jobs/job_store_impl.h"
@@ -40,7 +41,8 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
       .run();
   lease.task = *store.leased_task(lease.lease_id);
   sql::Stmt job(store.db,
-                "SELECT scene, spp, noise_target, min_spp, time_limit FROM jobs WHERE id = ?1");
+                "SELECT scene, spp, noise_target, min_spp, time_limit, aovs, layer_variance, seed, "
+                "scale FROM jobs WHERE id = ?1");
   job.bind(1, lease.task.job_id);
   job.step();
   lease.scene = job.text(0);
@@ -50,6 +52,11 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
   if (const auto min_spp = job.optional_i64(3)) frame.min_spp = int(*min_spp);
   frame.time_limit = job.optional_f64(4);
   lease.budget = task_budget(frame, lease.spp, lease.task.sample_begin, lease.task.sample_end);
+  RenderOverrides& o = lease.overrides;
+  o.aovs = split_aovs(job.text(5));
+  o.layer_variance = job.i64(6) != 0;
+  if (const auto seed = job.optional_i64(7)) o.seed = uint64_t(*seed);
+  o.scale = job.optional_f64(8);
   lease.assets = store.assets(lease.task.job_id);
   return lease;
 }
@@ -81,13 +88,19 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
       throw StoreError("job '" + spec.name + "': asset name '" + a.name + "' " + why);
   if (const auto why = budget_problem(spec.budget, spec.spp))
     throw StoreError("job '" + spec.name + "': " + why->field + ": " + why->message);
+  const RenderOverrides& o = spec.overrides;
+  if (o.seed && *o.seed > uint64_t(INT64_MAX))
+    throw StoreError("job '" + spec.name + "': seed above " + std::to_string(INT64_MAX));
+  if (o.scale && !(*o.scale > 0 && *o.scale <= kMaxFilmScale))
+    throw StoreError("job '" + spec.name + "': scale outside (0, " + exact_text(kMaxFilmScale) +
+                     "]");
   auto& db = impl_->db;
   sql::Transaction tx(db);
   const RenderBudget& b = spec.budget;
   sql::Stmt(db,
             "INSERT INTO jobs(name, scene, spp, priority, max_attempts, state, created, "
-            "inputs_key, noise_target, min_spp, time_limit) "
-            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, ?8, ?9, ?10)")
+            "inputs_key, noise_target, min_spp, time_limit, aovs, layer_variance, seed, scale) "
+            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14)")
       .bind(1, spec.name)
       .bind(2, spec.scene)
       .bind(3, int64_t(spec.spp))
@@ -98,6 +111,10 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
       .bind(8, b.noise_target)
       .bind(9, b.min_spp ? std::optional<int64_t>(*b.min_spp) : std::nullopt)
       .bind(10, b.time_limit)
+      .bind(11, o.aovs.empty() ? std::nullopt : std::optional<std::string>(join_aovs(o.aovs)))
+      .bind(12, int64_t(o.layer_variance))
+      .bind(13, o.seed ? std::optional<int64_t>(int64_t(*o.seed)) : std::nullopt)
+      .bind(14, o.scale)
       .run();
   const int64_t job = sqlite3_last_insert_rowid(db.get());
   for (size_t i = 0; i < spec.assets.size(); ++i)

@@ -17,6 +17,7 @@ std::string inputs_key(const JobSpec& spec) {
   if (b.noise_target) key += ";noise_target=" + exact_text(*b.noise_target);
   if (b.min_spp) key += ";min_spp=" + std::to_string(*b.min_spp);
   if (b.time_limit) key += ";time_limit=" + exact_text(*b.time_limit);
+  key += overrides_key(spec.overrides);
   for (const auto& a : assets) key += ";" + a;
   return key;
 }

@@ -1,8 +1,8 @@
 #pragma once
 // Result reuse: identical tasks are rendered once. Two tasks are identical
-// when their jobs' inputs keys (scene blob, spp, render budget, assets), frames and sample
-// ranges are equal and the same renderer (an opaque id, e.g. the renderer
-// executable's sha256) produced the done one.
+// when their jobs' inputs keys (scene blob, spp, render budget, render overrides, assets), frames
+// and sample ranges are equal and the same renderer (an opaque id, e.g. the renderer executable's
+// sha256) produced the done one.
 #include <cstdint>
 #include <string>
 
@@ -12,8 +12,9 @@ namespace vesper {
 
 // What makes two jobs' tasks identical besides their frame and sample range:
 // the scene blob, the spp, the render budget (noise target, min spp, time
-// limit: a different target is a different result) and the assets
-// (name=blob, in name order).
+// limit: a different target is a different result), the render overrides
+// (AOVs, per-layer variance, seed, film scale) and the assets (name=blob, in
+// name order).
 std::string inputs_key(const JobSpec& spec);
 
 // Completes queued task `task_id` with the result of an identical task already

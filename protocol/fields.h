@@ -51,6 +51,12 @@ inline constexpr const char* kNoiseReached = "noise_reached";
 inline constexpr const char* kSppMean = "spp_mean";
 inline constexpr const char* kStopReason = "stop_reason";
 
+// Render overrides: what a job asks of every render beyond its scene
+inline constexpr const char* kAovs = "aovs";
+inline constexpr const char* kLayerVariance = "layer_variance";
+inline constexpr const char* kSeed = "seed";
+inline constexpr const char* kScale = "scale";
+
 // Tasks
 inline constexpr const char* kJobId = "job_id";
 inline constexpr const char* kSampleBegin = "sample_begin";

@@ -23,18 +23,19 @@ namespace f = field;
 using detail::optional;
 using detail::required;
 
-VESPER_JSON_FIELDS(SubmitRequest, required(f::kName, &SubmitRequest::name),
-                   required(f::kScene, &SubmitRequest::scene),
-                   required(f::kFrames, &SubmitRequest::frames),
-                   required(f::kSpp, &SubmitRequest::spp),
-                   required(f::kSamplesPerTask, &SubmitRequest::samples_per_task),
-                   required(f::kPriority, &SubmitRequest::priority),
-                   required(f::kMaxAttempts, &SubmitRequest::max_attempts),
-                   optional(f::kAssets, &SubmitRequest::assets),
-                   optional(f::kNoiseTarget, &SubmitRequest::noise_target),
-                   optional(f::kMinSpp, &SubmitRequest::min_spp),
-                   optional(f::kMaxSpp, &SubmitRequest::max_spp),
-                   optional(f::kTimeLimit, &SubmitRequest::time_limit))
+VESPER_JSON_FIELDS(
+    SubmitRequest, required(f::kName, &SubmitRequest::name),
+    required(f::kScene, &SubmitRequest::scene), required(f::kFrames, &SubmitRequest::frames),
+    required(f::kSpp, &SubmitRequest::spp),
+    required(f::kSamplesPerTask, &SubmitRequest::samples_per_task),
+    required(f::kPriority, &SubmitRequest::priority),
+    required(f::kMaxAttempts, &SubmitRequest::max_attempts),
+    optional(f::kAssets, &SubmitRequest::assets),
+    optional(f::kNoiseTarget, &SubmitRequest::noise_target),
+    optional(f::kMinSpp, &SubmitRequest::min_spp), optional(f::kMaxSpp, &SubmitRequest::max_spp),
+    optional(f::kTimeLimit, &SubmitRequest::time_limit), optional(f::kAovs, &SubmitRequest::aovs),
+    optional(f::kLayerVariance, &SubmitRequest::layer_variance),
+    optional(f::kSeed, &SubmitRequest::seed), optional(f::kScale, &SubmitRequest::scale))
 VESPER_JSON_FIELDS(SubmitResponse, required(f::kId, &SubmitResponse::id),
                    required(f::kTaskCount, &SubmitResponse::task_count))
 VESPER_JSON_FIELDS(DryRunResponse, required(f::kDryRun, &DryRunResponse::dry_run),

@@ -31,6 +31,12 @@ struct SubmitRequest {
   std::optional<double> noise_target;   // relative error of each pixel's mean, > 0
   std::optional<int> min_spp, max_spp;  // with noise_target; max_spp replaces spp
   std::optional<double> time_limit;     // seconds of rendering per frame, > 0
+  // Render overrides (docs/farm.md, "Render overrides"), as `vesper render`'s
+  // --aov, --layer-variance, --seed, --scale; each left out when unset.
+  std::vector<std::string> aovs;  // AOV names instead of the scene's render.aovs
+  bool layer_variance = false;
+  std::optional<uint64_t> seed;  // instead of the scene's render.seed
+  std::optional<double> scale;   // film size factor, in (0, 4]
 };
 
 // 201 answer to POST /jobs.

@@ -21,16 +21,17 @@ VESPER_JSON_FIELDS(LeasedTask, required(f::kId, &LeasedTask::id),
                    required(f::kSampleBegin, &LeasedTask::sample_begin),
                    required(f::kSampleEnd, &LeasedTask::sample_end),
                    required(f::kAttempt, &LeasedTask::attempt))
-VESPER_JSON_FIELDS(LeaseResponse, required(f::kLeaseId, &LeaseResponse::lease_id),
-                   required(f::kExpiry, &LeaseResponse::expiry),
-                   required(f::kLeaseSeconds, &LeaseResponse::lease_seconds),
-                   required(f::kScene, &LeaseResponse::scene),
-                   required(f::kSpp, &LeaseResponse::spp),
-                   required(f::kAssets, &LeaseResponse::assets),
-                   required(f::kTask, &LeaseResponse::task),
-                   optional(f::kNoiseTarget, &LeaseResponse::noise_target),
-                   optional(f::kMinSpp, &LeaseResponse::min_spp),
-                   optional(f::kTimeLimit, &LeaseResponse::time_limit))
+VESPER_JSON_FIELDS(
+    LeaseResponse, required(f::kLeaseId, &LeaseResponse::lease_id),
+    required(f::kExpiry, &LeaseResponse::expiry),
+    required(f::kLeaseSeconds, &LeaseResponse::lease_seconds),
+    required(f::kScene, &LeaseResponse::scene), required(f::kSpp, &LeaseResponse::spp),
+    required(f::kAssets, &LeaseResponse::assets), required(f::kTask, &LeaseResponse::task),
+    optional(f::kNoiseTarget, &LeaseResponse::noise_target),
+    optional(f::kMinSpp, &LeaseResponse::min_spp),
+    optional(f::kTimeLimit, &LeaseResponse::time_limit), optional(f::kAovs, &LeaseResponse::aovs),
+    optional(f::kLayerVariance, &LeaseResponse::layer_variance),
+    optional(f::kSeed, &LeaseResponse::seed), optional(f::kScale, &LeaseResponse::scale))
 VESPER_JSON_FIELDS(HeartbeatRequest, required(f::kLeaseId, &HeartbeatRequest::lease_id),
                    required(f::kProgress, &HeartbeatRequest::progress))
 VESPER_JSON_FIELDS(HeartbeatResponse, required(f::kAnswer, &HeartbeatResponse::answer))

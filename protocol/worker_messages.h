@@ -61,6 +61,12 @@ struct LeaseResponse {
   std::optional<double> noise_target;
   std::optional<int> min_spp;
   std::optional<double> time_limit;
+  // The job's render overrides (`vesper render --aov a,b --layer-variance
+  // --seed S --scale X`); each left out when unset.
+  std::vector<std::string> aovs;
+  bool layer_variance = false;
+  std::optional<uint64_t> seed;
+  std::optional<double> scale;
 };
 
 // POST /heartbeat

@@ -79,6 +79,8 @@ struct RunResult {
   std::string suite;       // path of the suite file
   std::string started_at;  // ISO 8601 UTC
   std::string renderer_version;
+  std::string server;               // the farm's URL when rendered there (--server); empty: locally
+  std::string render_time_note;     // why render times were not judged; empty: they were
   Verdict verdict = Verdict::Pass;  // the worst scene verdict
   std::vector<SceneResult> scenes;
 };

@@ -52,10 +52,14 @@ std::string page_header(const RunResult& run) {
   s += fmt::format(
       "<dl class=\"facts\"><dt>Run started</dt><dd><time datetime=\"{0}\">{0}</time></dd>"
       "<dt>Renderer</dt><dd>{1}</dd><dt>Suite</dt><dd><code>{2}</code></dd>"
-      "<dt>Scenes</dt><dd>{3} ({4})</dd></dl></header>\n",
+      "<dt>Scenes</dt><dd>{3} ({4})</dd><dt>Rendered</dt><dd>{5}</dd>",
       html_escape(run.started_at), html_escape(run.renderer_version), html_escape(run.suite),
-      run.scenes.size(), counts_text(c));
-  return s;
+      run.scenes.size(), counts_text(c),
+      run.server.empty() ? std::string("here (--local)")
+                         : "on the farm at <code>" + html_escape(run.server) + "</code>");
+  if (!run.render_time_note.empty())
+    s += "<dt>Render times</dt><dd>" + html_escape(run.render_time_note) + "</dd>";
+  return s + "</dl></header>\n";
 }
 
 // Scene-level reasons, then each layer's prefixed with the layer.

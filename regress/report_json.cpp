@@ -195,6 +195,8 @@ json report_to_json(const RunResult& run) {
           {"suite", run.suite},
           {"started_at", run.started_at},
           {"renderer_version", run.renderer_version},
+          {"server", run.server},
+          {"render_time_note", run.render_time_note},
           {"verdict", verdict_name(run.verdict)},
           {"scenes", scenes}};
 }
@@ -207,6 +209,10 @@ RunResult report_from_json(const json& doc, const std::string& file) {
   run.suite = root.child("suite").as_string(true);
   run.started_at = root.child("started_at").as_string(true);
   run.renderer_version = root.child("renderer_version").as_string(true);
+  // Added within /1: reports written before them have neither.
+  if (const auto v = root.optional_child("server")) run.server = v->as_string(true);
+  if (const auto v = root.optional_child("render_time_note"))
+    run.render_time_note = v->as_string(true);
   run.verdict = read_verdict(root);
   run.scenes = read_list(root, "scenes", read_scene);
   return run;

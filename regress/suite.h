@@ -18,7 +18,7 @@ struct Thresholds {
   double alpha = 1e-4;             // family-wise false-alarm rate per layer (Holm over its tiles)
   int tile_size = 16;              // pixels
   double min_relative_change = 0;  // ignore significant tile changes smaller than this
-  double max_slowdown = 1.3;       // new render time / golden's, judged on repeated timings
+  double max_slowdown = 1.2;       // new render time / golden's, judged on repeated timings
   double max_histogram_distance = 0.05;  // Wasserstein-1 of the luminosity histograms, stops
 };
 

@@ -9,6 +9,7 @@
 #include "common/sha256.h"
 #include "jobs/frame_range.h"
 #include "protocol/fields.h"
+#include "renderer/scene/aov_list.h"
 #include "server/api_error.h"
 
 namespace vesper {
@@ -122,8 +123,8 @@ std::vector<int> read_frames(const JsonReader& frames) {
 
 JobSpec read_job(JsonReader& o) {
   o.allow_keys({f::kName, f::kScene, f::kFrames, f::kSpp, f::kSamplesPerTask, f::kPriority,
-                f::kMaxAttempts, f::kAssets, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
-                f::kTimeLimit});
+                f::kMaxAttempts, f::kAssets, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp, f::kTimeLimit,
+                f::kAovs, f::kLayerVariance, f::kSeed, f::kScale});
   JobSpec spec;
   const auto name = o.optional_child(f::kName);
   spec.name = name ? name->as_string(/*allow_empty=*/true) : "job";
@@ -139,6 +140,7 @@ JobSpec read_job(JsonReader& o) {
   if (const auto why = budget_problem(budget, spec.spp)) o.fail_key(why->field, why->message);
   spec.spp = budget.frame_spp(spec.spp);
   spec.budget = budget.budget;
+  spec.overrides = read_render_overrides(o);
   const int64_t n = task_count(spec);
   if (n > kMaxTasksPerJob)
     o.fail_key(spec.samples_per_task > 0 ? f::kSamplesPerTask : f::kFrames,
@@ -159,6 +161,20 @@ BudgetRequest read_budget_request(JsonReader& o) {
   if (const auto v = o.optional_child(f::kMaxSpp)) r.max_spp = int(v->as_integer(1, kMaxFrameSpp));
   if (const auto v = o.optional_child(f::kTimeLimit))
     r.budget.time_limit = v->as_number(Range::positive());
+  return r;
+}
+
+RenderOverrides read_render_overrides(JsonReader& o) {
+  RenderOverrides r;
+  if (const auto v = o.optional_child(f::kAovs)) {
+    // Checked as the renderer reads render.aovs, so a task cannot fail on them.
+    for (const Aov a : read_aov_list(*v)) r.aovs.emplace_back(kAovNames[size_t(a)]);
+    if (r.aovs.empty()) v->fail("expected at least one AOV (leave the key out for the scene's)");
+  }
+  r.layer_variance = o.boolean(f::kLayerVariance, false);
+  if (const auto v = o.optional_child(f::kSeed)) r.seed = uint64_t(v->as_integer(0, INT64_MAX));
+  if (const auto v = o.optional_child(f::kScale))
+    r.scale = v->as_number(Range::left_open(0, kMaxFilmScale));
   return r;
 }
 

@@ -87,6 +87,10 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
   out.noise_target = l->budget.noise_target;
   out.min_spp = l->budget.min_spp;
   out.time_limit = l->budget.time_limit;
+  out.aovs = l->overrides.aovs;
+  out.layer_variance = l->overrides.layer_variance;
+  out.seed = l->overrides.seed;
+  out.scale = l->overrides.scale;
   return json_response(200, out);
 }
 

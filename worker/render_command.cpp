@@ -1,6 +1,7 @@
 #include "worker/render_command.h"
 
 #include "jobs/render_budget.h"
+#include "jobs/render_overrides.h"
 
 namespace vesper::worker_detail {
 
@@ -38,6 +39,11 @@ std::vector<std::string> render_command(const protocol::LeaseResponse& lease,
   }
   if (lease.min_spp) add("--min-spp", std::to_string(*lease.min_spp));
   if (lease.time_limit) add("--time-limit", exact_text(*lease.time_limit));
+  // The job's render overrides (jobs/render_overrides.h).
+  if (!lease.aovs.empty()) add("--aov", join_aovs(lease.aovs));
+  if (lease.layer_variance) argv.push_back("--layer-variance");
+  if (lease.seed) add("--seed", std::to_string(*lease.seed));
+  if (lease.scale) add("--scale", exact_text(*lease.scale));
   if (config.render_threads > 0) {
     argv.push_back("--threads");
     argv.push_back(std::to_string(config.render_threads));

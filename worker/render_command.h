@@ -12,12 +12,14 @@ namespace vesper::worker_detail {
 
 // `vesper render <scene_file> -o <output> --spp S --sample-begin B
 // --sample-end E --frame F [--partial] [--noise-target X --max-spp S]
-// [--min-spp M] [--time-limit T] [--threads N]`: the budget flags are the
-// task's share of its frame's budget, as the lease carries it (exact: the
-// shortest text of each double); --max-spp pins the frame's spp to the job's
-// over the scene's render.max_spp. No --seed: the
-// renderer takes the scene's own render.seed, and --frame decorrelates the
-// frames from it, exactly as a local `vesper render --frame F` does. No -q:
+// [--min-spp M] [--time-limit T] [--aov A,B] [--layer-variance] [--seed S]
+// [--scale X] [--threads N]`: the budget flags are the task's share of its
+// frame's budget, as the lease carries it (exact: the shortest text of each
+// double); --max-spp pins the frame's spp to the job's over the scene's
+// render.max_spp. --aov, --layer-variance, --seed and --scale are the job's
+// render overrides, when it has them. Without --seed the renderer takes the
+// scene's own render.seed; either way --frame decorrelates the frames from
+// it, exactly as a local `vesper render --frame F` does. No -q:
 // the render's plain progress lines on stderr feed the heartbeat's progress
 // and give failure logs context.
 // A sample range that is not the whole frame renders a partial (exact

@@ -40,9 +40,27 @@ void write_exr(const LayeredImage& image, const std::filesystem::path& path) {
   }
 }
 
-LayeredImage read_exr(const std::filesystem::path& path) {
+namespace {
+
+std::unique_ptr<OIIO::ImageInput> open_image(const std::filesystem::path& path) {
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) throw ImageIoError("cannot read " + path.string() + ": " + OIIO::geterror());
+  return in;
+}
+
+std::map<std::string, std::string> vesper_metadata(const OIIO::ImageSpec& spec) {
+  std::map<std::string, std::string> out;
+  for (const auto& p : spec.extra_attribs) {
+    const std::string name = p.name().string();
+    if (name.rfind(metadata_key::kPrefix, 0) == 0) out[name] = p.get_string();
+  }
+  return out;
+}
+
+}  // namespace
+
+LayeredImage read_exr(const std::filesystem::path& path) {
+  auto in = open_image(path);
   const OIIO::ImageSpec& spec = in->spec();
   LayeredImage img;
   img.width = spec.width;
@@ -51,12 +69,13 @@ LayeredImage read_exr(const std::filesystem::path& path) {
   img.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
     throw ImageIoError("cannot read " + path.string() + ": " + in->geterror());
-  for (const auto& p : spec.extra_attribs) {
-    const std::string name = p.name().string();
-    if (name.rfind(metadata_key::kPrefix, 0) == 0) img.metadata[name] = p.get_string();
-  }
+  img.metadata = vesper_metadata(spec);
   in->close();
   return img;
+}
+
+std::map<std::string, std::string> read_exr_metadata(const std::filesystem::path& path) {
+  return vesper_metadata(open_image(path)->spec());
 }
 
 }  // namespace vesper

@@ -1,7 +1,9 @@
 #pragma once
 // Multi-layer OpenEXR in and out (through OpenImageIO).
 #include <filesystem>
+#include <map>
 #include <stdexcept>
+#include <string>
 
 #include "renderer/output/layered_image.h"
 
@@ -18,5 +20,8 @@ void write_exr(const LayeredImage& image, const std::filesystem::path& path);
 
 // Reads every channel of the first subimage as float.
 LayeredImage read_exr(const std::filesystem::path& path);
+
+// Only the `vesper:*` metadata (read_exr's `metadata`), from the header.
+std::map<std::string, std::string> read_exr_metadata(const std::filesystem::path& path);
 
 }  // namespace vesper

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/json_parse.h"
+#include "renderer/scene/aov_list.h"
 #include "renderer/scene/scene_parse.h"
 
 namespace vesper {
@@ -95,20 +96,7 @@ RenderDesc parse_render(JsonReader node) {
   render.spp = int(node.integer("spp", 1, INT_MAX));
   render.max_depth = int(node.integer("max_depth", 8, 1, INT_MAX));
   if (const auto seed = node.optional_child("seed")) render.seed = seed->as_uint64();
-  if (const auto aovs = node.optional_child("aovs")) {
-    aovs->expect_array();
-    for (size_t i = 0; i < aovs->size(); ++i) {
-      const JsonReader e = aovs->element(i);
-      const Aov aov = static_cast<Aov>(e.as_enum(kAovNames));
-      for (size_t j = 0; j < render.aovs.size(); ++j) {
-        if (render.aovs[j] == aov) {
-          e.fail("duplicate AOV " + e.json().dump() + " (already at " +
-                 json_pointer_append(aovs->path(), j) + ")");
-        }
-      }
-      render.aovs.push_back(aov);
-    }
-  }
+  if (const auto aovs = node.optional_child("aovs")) render.aovs = read_aov_list(*aovs);
   parse_sampling_budget(node, render);
   return render;
 }

@@ -18,7 +18,7 @@ bool first_frame_ready(const nlohmann::json& job) {
 
 }  // namespace
 
-// The frame: 24x24 Cornell box, max 1024 spp, noise target X = 0.1. The bound
+// The frame: 24x24 Cornell box, max 1024 spp, noise target X = 0.05. The bound
 // on the noise reached is X for both jobs:
 //  - a pixel stops sampling only when its estimated relative error of the
 //    mean (and its 3x3 neighbourhood's RMS) is at most its task's target;
@@ -29,12 +29,12 @@ bool first_frame_ready(const nlohmann::json& job) {
 //    independent estimates, so its variance is a quarter of each one's:
 //    about X again, and noise_reached, an RMS over 576 pixels, averages the
 //    estimates' own noise out.
-// Measured (renderer of issue 12): 0.076 whole, 0.081 split, both
-// deterministic for the scene's seed. Tasks aiming at X each (no sqrt(J))
-// would take ~2.3x the samples (the spp check below fails); at X * J the
-// merged noise is ~0.127 (the bound fails).
+// Both are deterministic for the scene's seed. Tasks aiming at X each (no
+// sqrt(J)) would take ~2x the samples (the spp check below fails); at X * J
+// the merged noise is ~X * sqrt(J) (the bound fails). X is small enough that
+// the whole frame needs well over the four tasks' 4 x min_spp.
 TEST_F(FarmTest, ANoiseTargetIsMetWholeAndSplitAndStatusShowsIt) {
-  const double x = 0.1;
+  const double x = 0.05;
   const auto config = write_config(10);
   const auto scene = write_scene(24, 24, 16);
   start_server(config);
@@ -50,7 +50,8 @@ TEST_F(FarmTest, ANoiseTargetIsMetWholeAndSplitAndStatusShowsIt) {
     ASSERT_TRUE(f.contains("noise_reached") && f.contains("spp_mean")) << f.dump();
     EXPECT_LE(f.at("noise_reached").get<double>(), x) << f.dump();
     EXPECT_GT(f.at("noise_reached").get<double>(), x / 4) << f.dump();  // not oversampled
-    EXPECT_TRUE(f.at("stop_reason") == "noise_target" || f.at("stop_reason") == "max_spp")
+    const std::string stop = f.at("stop_reason");  // a merged frame lists its tasks' reasons
+    EXPECT_TRUE(stop == "noise_target" || stop == "max_spp" || stop == "max_spp,noise_target")
         << f.dump();
   }
   // The split frame took about the whole frame's samples: X * sqrt(4) per task.
@@ -58,7 +59,7 @@ TEST_F(FarmTest, ANoiseTargetIsMetWholeAndSplitAndStatusShowsIt) {
   EXPECT_GT(ratio, 2.0 / 3) << a.dump() << b.dump();
   EXPECT_LT(ratio, 1.5) << a.dump() << b.dump();
   // Each task was told its share.
-  EXPECT_NE((worker_log("w1") + worker_log("w2")).find("noise target 0.2 (min spp 16)"),
+  EXPECT_NE((worker_log("w1") + worker_log("w2")).find("noise target 0.1 (min spp 16)"),
             std::string::npos)
       << worker_log("w1");
 

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <functional>
 
 #include "jobs/job_store.h"
 #include "jobs/sqlite_db.h"
@@ -21,7 +22,8 @@ class JobStoreTest : public ::testing::Test {
   fs::path db() const { return dir_ / "jobs.sqlite"; }
   static JobSpec spec(std::vector<int> frames, int spp = 8, int split = 0, int priority = 50,
                       int attempts = 3) {
-    return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts, {}, {}};
+    return JobSpec{"job", "scene-sha", std::move(frames), spp, split, priority, attempts, {},
+                   {},    {}};
   }
   test::TempDir dir_{"jobs"};
 };
@@ -37,7 +39,7 @@ TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {
   EXPECT_EQ(tasks[2].sample_end, 10);  // the last range is short
   EXPECT_EQ(tasks[3].frame, 2);
   EXPECT_EQ(s.job(j)->queued, 6);
-  EXPECT_EQ(s.schema_version(), 6);
+  EXPECT_EQ(s.schema_version(), 7);
 }
 
 TEST_F(JobStoreTest, LeasesByPriorityThenAgeThenFrame) {
@@ -176,6 +178,48 @@ TEST_F(JobStoreTest, IdenticalTasksAreRenderedOnceByTheSameRenderer) {
   ASSERT_TRUE(n);
   EXPECT_EQ(n->task.job_id, other_renderer);
   EXPECT_EQ(reused, 0);
+}
+
+// A job's render overrides reach each lease, and are part of what makes
+// tasks identical: the same scene with other AOVs or another seed is another
+// result.
+TEST_F(JobStoreTest, RenderOverridesAreLeasedAndKeyResultReuse) {
+  JobStore s(db(), StoreOptions{60, 3});
+  JobSpec a = spec({1}, 8);
+  a.overrides = {{"variance", "albedo"}, true, 7, 0.25};
+  s.submit(a, 0);
+  const auto l = s.lease("w", 1, "r1");
+  ASSERT_TRUE(l);
+  EXPECT_EQ(l->overrides, a.overrides);
+  EXPECT_TRUE(s.complete(l->lease_id, "with-overrides", 2));
+
+  int reused = -1;
+  const int64_t same = s.submit(a, 3);
+  EXPECT_FALSE(s.lease("w", 4, "r1", &reused));  // done at once with the first result
+  EXPECT_EQ(reused, 1);
+  EXPECT_EQ(s.tasks(same)[0].result, "with-overrides");
+  for (auto change : std::vector<std::function<void(RenderOverrides&)>>{
+           [](RenderOverrides& o) { o.aovs = {"variance"}; },
+           [](RenderOverrides& o) { o.layer_variance = false; },
+           [](RenderOverrides& o) { o.seed = 8; }, [](RenderOverrides& o) { o.scale.reset(); }}) {
+    JobSpec b = a;
+    change(b.overrides);
+    const int64_t other = s.submit(b, 5);
+    const auto m = s.lease("w", 6, "r1", &reused);
+    ASSERT_TRUE(m);
+    EXPECT_EQ(m->task.job_id, other);
+    EXPECT_EQ(m->overrides, b.overrides);
+    EXPECT_EQ(reused, 0);
+    EXPECT_TRUE(s.complete(m->lease_id, "x", 7));
+  }
+  // A job without overrides leases without them (as before they existed).
+  s.submit(spec({2}, 8), 8);
+  const auto plain = s.lease("w", 9, "r1");
+  ASSERT_TRUE(plain);
+  EXPECT_TRUE(plain->overrides.empty());
+  JobSpec bad = a;
+  bad.overrides.scale = 5;
+  EXPECT_THROW(s.submit(bad, 10), StoreError);
 }
 
 TEST_F(JobStoreTest, CancelAndPauseStopRunningTasksAtTheNextHeartbeat) {
@@ -340,7 +384,7 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
 )sql");
   }
   JobStore s(db());
-  EXPECT_EQ(s.schema_version(), 6);
+  EXPECT_EQ(s.schema_version(), 7);
   EXPECT_EQ(s.job(1)->name, "old");
   EXPECT_TRUE(s.assets(1).empty());
   EXPECT_TRUE(s.frame(1, 1)->complete());
@@ -349,6 +393,7 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
   ASSERT_TRUE(l);
   EXPECT_EQ(l->task.frame, 2);
   EXPECT_TRUE(l->assets.empty());
+  EXPECT_TRUE(l->overrides.empty());  // an old job renders as it always did
   EXPECT_TRUE(s.complete(l->lease_id, "r2", 2));
   EXPECT_EQ(s.frame(1, 2)->output, "r2");
   JobSpec sp = spec({1});

@@ -132,6 +132,35 @@ TEST(JobMessagesTest, TheRenderBudgetTravelsWhenSetAndIsLeftOutOtherwise) {
   expect_budget_travels(l);
 }
 
+// The render overrides (submit, lease): left out when unset (an old job's
+// messages are unchanged), written when set, read back whole.
+template <class T>
+void expect_overrides_travel(T m) {
+  const json unset = m;
+  m.aovs = {"variance", "albedo"};
+  m.layer_variance = true;
+  m.seed = 9007199254740993ull;  // above 2^53: kept exact as an integer
+  m.scale = 0.125;
+  const json set = m;
+  const json expected = json::parse(R"({"aovs": ["variance", "albedo"], "layer_variance": true,
+      "seed": 9007199254740993, "scale": 0.125})");
+  for (const auto& [key, value] : expected.items()) {
+    EXPECT_FALSE(unset.contains(key)) << key;
+    EXPECT_EQ(set.at(key), value) << key;
+  }
+  EXPECT_EQ(json(round_trip(m)), set);
+}
+
+TEST(JobMessagesTest, TheRenderOverridesTravelWhenSetAndAreLeftOutOtherwise) {
+  SubmitRequest s;
+  s.scene = "S";
+  s.frames = std::string("1");
+  expect_overrides_travel(s);
+  LeaseResponse l;
+  l.task = {3, 1, 5, 64, 128, 1};
+  expect_overrides_travel(l);
+}
+
 TEST(JobMessagesTest, AReadyFrameCarriesTheNoiseItReached) {
   const FrameInfo f{4, FrameState::Ready, 2, 2, "B", "", 0.0123, 37.25, "noise_target"};
   const json j = f;

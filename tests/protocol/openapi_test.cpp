@@ -185,12 +185,20 @@ TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
   submit.noise_target = 0.01;
   submit.min_spp = submit.max_spp = 8;
   submit.time_limit = 60;
+  submit.aovs = {"variance"};
+  submit.layer_variance = true;
+  submit.seed = 7;
+  submit.scale = 0.25;
   EXPECT_EQ(keys_of(nlohmann::json(submit)), properties(doc, "SubmitRequest"));
 
   LeaseResponse lease;
   lease.noise_target = 0.02;
   lease.min_spp = 8;
   lease.time_limit = 30;
+  lease.aovs = {"variance", "albedo"};
+  lease.layer_variance = true;
+  lease.seed = 7;
+  lease.scale = 0.5;
   EXPECT_EQ(keys_of(nlohmann::json(lease)), properties(doc, "LeaseResponse"));
   EXPECT_EQ(keys_of(nlohmann::json(lease.task)), properties(doc, "LeasedTask"));
 

@@ -52,6 +52,17 @@ TEST(ReportJson, HasTheDocumentedKeys) {
   EXPECT_EQ(beauty["significance"]["significant"][1], 1);
 }
 
+// "server" and "render_time_note" were added within /1: older reports lack them.
+TEST(ReportJson, ReadsAReportWithoutTheFarmKeys) {
+  nlohmann::json j = report_to_json(test::sample_run());
+  EXPECT_EQ(j["server"], "http://farm:8765");
+  j.erase("server");
+  j.erase("render_time_note");
+  const RunResult run = report_from_json(j, "old.json");
+  EXPECT_TRUE(run.server.empty());
+  EXPECT_TRUE(run.render_time_note.empty());
+}
+
 TEST(ReportJson, NonFiniteNumbersBecomeNullAndReadBackAsNan) {
   RunResult run = test::sample_run();
   run.scenes[0].layers[0].max_abs_z = INFINITY;

@@ -52,6 +52,8 @@ inline regress::RunResult sample_run() {
   run.suite = "scenes/regression/suite.json";
   run.started_at = "2024-05-01T02:00:00Z";
   run.renderer_version = "vesper 0.13.0";
+  run.server = "http://farm:8765";
+  run.render_time_note = "shown, not judged: farm workers differ";
   run.verdict = Verdict::Error;
   run.scenes = {cornell, smoke};
   return run;

@@ -20,6 +20,15 @@ protocol::LeaseResponse lease(int frame, int spp, int begin, int end) {
   return t;
 }
 
+// The job's render overrides, which go on as `vesper render`'s own flags.
+protocol::LeaseResponse with_overrides(protocol::LeaseResponse l) {
+  l.aovs = {"variance", "albedo"};
+  l.layer_variance = true;
+  l.seed = 11;
+  l.scale = 0.125;
+  return l;
+}
+
 WorkerConfig config(int threads) {
   WorkerConfig c;
   c.vesper_binary = "/opt/vesper/bin/vesper";
@@ -27,8 +36,8 @@ WorkerConfig config(int threads) {
   return c;
 }
 
-// A whole frame renders an EXR; a sample range a partial (--partial), and the
-// worker's --threads are passed on.
+// A whole frame renders an EXR; a sample range a partial (--partial); the
+// job's render overrides and the worker's --threads are passed on.
 TEST(RenderCommand, FollowsTheTaskAndTheWorkerConfig) {
   struct Case {
     protocol::LeaseResponse lease;
@@ -42,6 +51,9 @@ TEST(RenderCommand, FollowsTheTaskAndTheWorkerConfig) {
       {lease(3, 16, 4, 8), 2, ".vpartial",
        "/opt/vesper/bin/vesper render s.json -o out --spp 16 --sample-begin 4 --sample-end 8 "
        "--frame 3 --partial --threads 2"},
+      {with_overrides(lease(4, 32, 0, 32)), 1, ".exr",
+       "/opt/vesper/bin/vesper render s.json -o out --spp 32 --sample-begin 0 --sample-end 32 "
+       "--frame 4 --aov variance,albedo --layer-variance --seed 11 --scale 0.125 --threads 1"},
   };
   for (const Case& c : cases) {
     EXPECT_EQ(render_output_extension(c.lease), c.extension);
@@ -74,7 +86,7 @@ TEST(RenderCommand, PassesTheTasksBudget) {
 }
 
 TEST(RenderCommand, LeavesTheSeedToTheSceneAndTheProgressLinesOn) {
-  // The renderer takes the scene's render.seed itself; -q would silence the
+  // Without a seed override the renderer takes the scene's render.seed; -q would silence the
   // progress lines the heartbeat reports.
   const auto argv = render_command(lease(1, 4, 0, 4), config(1), "s.json", "r.exr");
   EXPECT_EQ(std::count(argv.begin(), argv.end(), "--seed"), 0);
