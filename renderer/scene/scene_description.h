@@ -115,12 +115,14 @@ struct QuadLightDesc {
 };
 struct PointLightDesc {
   Vec3d position;
-  Rgb intensity;  // W/sr
+  Rgb intensity;      // W/sr
+  double radius = 0;  // scene units; > 0: a sphere light
 };
 struct SpotLightDesc {
   Vec3d position, direction;  // direction normalized by the loader
   Rgb intensity;
   double cone_angle = 30, falloff_start = 25;  // half-angles, degrees; falloff_start <= cone_angle
+  double radius = 0;                           // scene units; > 0: a sphere light
 };
 struct SunLightDesc {
   Vec3d direction;   // from the scene toward the sun, normalized by the loader
