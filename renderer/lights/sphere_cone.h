@@ -73,7 +73,7 @@ inline std::optional<LightSample> sample_sphere_light(const Vec3& p, const Vec3&
 }
 
 inline LightBounds sphere_bounds(const Vec3& center, float radius) {
-  return {center - Vec3(radius), center + Vec3(radius)};
+  return {center - Vec3(radius), center + Vec3(radius), radius > 0.f};
 }
 
 }  // namespace vesper
