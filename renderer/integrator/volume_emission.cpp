@@ -18,12 +18,17 @@ Rgb integrate_grid(const GridMedium& g, const Ray& ray, float t_end,
   const float h = 1.f / (voxels_per_t * kPointsPerVoxel);  // lattice spacing in t
   Rgb sum;
   size_t step = 0;
+  // The lattice starts where the ray enters the grid's box (the first
+  // segment), so k counts voxels inside the grid: small, exact in a float
+  // however far the ray's origin is.
+  float anchor = -1.f;
   g.emission_majorants->walk(o, d, 0.f, t_end, [&](const MajorantSegment& s) {
+    if (anchor < 0.f) anchor = s.t0;
     if (!(s.max_density > 0.f)) return true;
-    // Lattice points t_k = (k + u) h with s.t0 <= t_k < s.t1: each segment
-    // tests the same float t_k, so neighbouring segments share none.
-    for (float k = std::max(0.f, std::floor(s.t0 / h - u));; k += 1.f) {
-      const float t = (k + u) * h;
+    // Lattice points t_k = anchor + (k + u) h with s.t0 <= t_k < s.t1: each
+    // segment tests the same float t_k, so neighbouring segments share none.
+    for (float k = std::max(0.f, std::floor((s.t0 - anchor) / h - u));; k += 1.f) {
+      const float t = anchor + (k + u) * h;
       if (!(t < s.t1) || !(t < t_end)) break;
       if (t < s.t0) continue;
       while (step + 1 < steps.size() && steps[step + 1].t <= t) ++step;

@@ -8,9 +8,10 @@
 // dt over [0, t_end) — t_end the real collision (or the surface/escape) and
 // beta the throughput, piecewise constant between null collisions. That
 // integral is estimated by stratified points: a lattice one emission voxel
-// apart with one random offset, visited only in cells of the emission grid's
-// own majorant grid that can emit (unbiased for any offset distribution
-// that is uniform; a constant emission is integrated exactly).
+// apart from where the ray enters the grid, with one random offset, visited
+// only in cells of the emission grid's own majorant grid that can emit
+// (unbiased, as the offset is uniform; a constant emission is integrated
+// exactly).
 #include <vector>
 
 #include "renderer/core/ray.h"
