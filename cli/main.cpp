@@ -115,6 +115,10 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
                 "Render the film at this fraction of its size (e.g. 0.25 for previews and "
                 "regression suites); the camera is unchanged")
       ->check(greater_than_zero());
+  r->add_option("--clamp", o->clamp,
+                "Indirect sample clamp (biased, off by default): scale each sample's indirect "
+                "light down to at most this in its largest RGB component; overrides render.clamp")
+      ->check(greater_than_zero());
   r->add_flag("--layer-variance", o->layer_variance,
               "Also write <layer>.variance.R/G/B for every RGB AOV and layer (costs 192 bytes "
               "per pixel and layer while rendering)");

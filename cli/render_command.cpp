@@ -1,6 +1,6 @@
+#include <spdlog/spdlog.h>
 #include <algorithm>
 #include <cmath>
-#include <spdlog/spdlog.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -65,9 +65,7 @@ std::optional<std::pair<int, int>> sample_range(const RenderCommandOptions& o, i
 
 // --scale: the film's size times `scale`, at least 1x1 and at most 65536 a side.
 void scale_film(FilmDesc& film, double scale) {
-  auto scaled = [&](int n) {
-    return int(std::clamp(std::lround(double(n) * scale), 1L, 65536L));
-  };
+  auto scaled = [&](int n) { return int(std::clamp(std::lround(double(n) * scale), 1L, 65536L)); };
   film.width = scaled(film.width);
   film.height = scaled(film.height);
 }
@@ -117,6 +115,7 @@ int run_render(const RenderCommandOptions& o) {
   ro.min_spp = o.sampling.min_spp;
   ro.max_spp = o.sampling.max_spp;
   ro.layer_variance = o.layer_variance;
+  ro.clamp = o.clamp;
   try {
     check_sampling_options(desc.render, ro);
   } catch (const std::invalid_argument& e) {

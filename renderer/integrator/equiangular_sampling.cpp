@@ -11,12 +11,13 @@ namespace vesper {
 namespace {
 
 // The segment from the first span's start to the last span's end, seen from
-// the light when it is a single point (point and spot lights).
+// the light's aim point (point and spot lights, with or without a radius).
 std::optional<EquiangularSegment> segment_toward(const Light& light, const Ray& ray,
                                                  const std::vector<MajorantSpan>& spans) {
   const std::optional<LightBounds> b = light.bounds();
-  if (!b || !b->is_point()) return std::nullopt;
-  return EquiangularSegment::make(ray.origin, ray.dir, b->lo, spans.front().t0, spans.back().t1);
+  const std::optional<Vec3> aim = b ? b->aim() : std::nullopt;
+  if (!aim) return std::nullopt;
+  return EquiangularSegment::make(ray.origin, ray.dir, *aim, spans.front().t0, spans.back().t1);
 }
 
 }  // namespace
@@ -42,7 +43,11 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const float pdf_e = seg->pdf(t);
   const Vec3 x = ray.origin + ray.dir * t;
   const MediumCoefficients c = scene.media.coefficients(x);
-  const auto ls = light.sample(x, {});
+  // A sphere light samples a point on itself (the MIS weights below are over
+  // the distance only, so any unbiased light sample fits); a point light
+  // needs no numbers, and takes none, as before radii existed.
+  const Vec2 u_light = light.bounds()->is_point() ? Vec2{} : sampler.next2();
+  const auto ls = light.sample(x, u_light);
   if (!(pdf_e > 0.f) || c.sigma_s.is_black() || !ls || ls->radiance.is_black()) return out;
   const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y)};
   const float f = phase.eval(-ray.dir, ls->wi);

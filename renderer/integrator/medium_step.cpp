@@ -26,8 +26,7 @@ void add_equiangular(PathContext& ctx, const Ray& ray, const std::vector<Majoran
   if (es.value.is_black()) return;
   const int group = ctx.scene.light_group[es.light];
   if (depth == 0 && ctx.options.record) {
-    ctx.result.radiance += es.value;
-    ctx.options.record->add_as(FirstEvent::Volume, false, group, es.value);
+    ctx.add_as(FirstEvent::Volume, false, group, es.value);
   } else {
     ctx.add(es.value, depth + 1, group);
   }
@@ -79,6 +78,25 @@ void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const Fre
   path.ray = Ray{p, wi};
 }
 
+// Delta tracking to the next real collision, with the volume emission along
+// the way (up to that collision) integrated on its own (volume_emission.h).
+FreeFlight sample_free_flight_with_emission(PathContext& ctx,
+                                            const std::vector<MajorantSpan>& spans, float tmax,
+                                            int depth, PathState& path) {
+  const MediaSet& media = ctx.scene.media;
+  if (!media.has_emission())
+    return sample_free_flight(media, spans, path.ray, ctx.sampler, path.throughput);
+  const float u = ctx.sampler.next1();  // the emission lattice's offset
+  thread_local std::vector<ThroughputStep> steps;
+  steps.clear();
+  const FreeFlight flight =
+      sample_free_flight(media, spans, path.ray, ctx.sampler, path.throughput, &steps);
+  const float t_end = flight.event == FlightEvent::Escaped ? tmax : flight.t;
+  const Rgb emitted = integrate_emission(media, path.ray, t_end, steps, u);
+  if (!emitted.is_black()) ctx.add(emitted, depth, ctx.scene.emission_group, depth == 0);
+  return flight;
+}
+
 }  // namespace
 
 MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& path) {
@@ -93,10 +111,7 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
       options.equiangular && all_analytic(spans) && ctx.have_lights() && depth < options.max_depth;
   if (equiangular) add_equiangular(ctx, path.ray, spans, depth, path.throughput);
 
-  Rgb emitted;
-  const FreeFlight flight =
-      sample_free_flight(scene.media, spans, path.ray, ctx.sampler, path.throughput, emitted);
-  if (!emitted.is_black()) ctx.add(emitted, depth, scene.emission_group, depth == 0);
+  const FreeFlight flight = sample_free_flight_with_emission(ctx, spans, tmax, depth, path);
   if (flight.event == FlightEvent::Absorbed) return MediumEvent::PathEnded;
   if (flight.event == FlightEvent::Escaped) return MediumEvent::None;
   if (depth >= options.max_depth) return MediumEvent::PathEnded;

@@ -19,13 +19,35 @@ struct PathContext {
   const PathTracerOptions& options;
   PathResult& result;
 
+  // With options.indirect_clamp: the sample's direct and indirect sums.
+  Rgb direct, indirect;
+
   bool have_lights() const { return !scene.light_sampler.empty(); }
 
   // Adds a contribution to the pixel and, for layers/AOVs, to the path record.
   void add(const Rgb& value, int events, int group, bool volume_view = false,
            const Rgb* diffuse_fraction = nullptr) {
     result.radiance += value;
+    if (options.indirect_clamp > 0.f) (events > 1 ? indirect : direct) += value;
     if (options.record) options.record->add(value, events, group, volume_view, diffuse_fraction);
+  }
+  // A contribution whose first event the path has not made itself.
+  void add_as(FirstEvent kind, bool is_indirect, int group, const Rgb& value) {
+    result.radiance += value;
+    if (options.indirect_clamp > 0.f) (is_indirect ? indirect : direct) += value;
+    if (options.record) options.record->add_as(kind, is_indirect, group, value);
+  }
+
+  // The indirect sample clamp (render.clamp), once the path has ended: the
+  // indirect sum is scaled (hue kept) so its largest component is at most
+  // the clamp, in the pixel and in the record's indirect bins alike. An
+  // unclamped sample keeps its radiance bit for bit.
+  void clamp_indirect() {
+    const float limit = options.indirect_clamp, peak = indirect.max_component();
+    if (!(limit > 0.f) || !(peak > limit)) return;
+    const float s = limit / peak;
+    result.radiance = direct + indirect * s;
+    if (options.record) options.record->scale_indirect(s);
   }
 };
 

@@ -47,6 +47,11 @@ class PathRecord {
   void add_as(FirstEvent kind, bool indirect, int group, const Rgb& value) {
     bins_[bin(kind, indirect, group, groups_)] += value;
   }
+  // The indirect sample clamp (PathContext::clamp_indirect).
+  void scale_indirect(float s) {
+    for (int kind = 0; kind < kFirstEventKinds; ++kind)
+      for (int g = 0; g < groups_; ++g) bins_[bin(FirstEvent(kind), true, g, groups_)] *= s;
+  }
   // `events`: scattering events before the light was reached (0 = seen
   // directly). `diffuse_fraction` overrides the split of the first surface
   // event (next-event estimation at that event uses its own lobe split).

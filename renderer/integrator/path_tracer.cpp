@@ -116,7 +116,7 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
                  const PathTracerOptions& options) {
   PathResult result;
   if (options.record) options.record->reset();
-  PathContext ctx{scene, sampler, options, result};
+  PathContext ctx{scene, sampler, options, result, Rgb{}, Rgb{}};
   PathState path{camera_ray};
   for (int depth = 0;; ++depth) {
     const std::optional<SurfaceHit> hit = scene.accel->intersect(path.ray);
@@ -143,6 +143,7 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
     if (!scatter_at_surface<kMedia>(ctx, *hit, depth, path)) break;
     if (!russian_roulette(depth, options, sampler, path.throughput)) break;
   }
+  ctx.clamp_indirect();
   return result;
 }
 

@@ -31,6 +31,10 @@ struct PathTracerOptions {
   PathRecord* record = nullptr;
   // Estimate the camera ray's transmittance through the media (layer alpha).
   bool want_camera_transmittance = false;
+  // > 0: a camera sample's indirect light (reached after two or more
+  // scattering events) is scaled down so that its largest RGB component is at
+  // most this (render.clamp; biased). 0 = off, the exact estimator.
+  float indirect_clamp = 0;
 };
 
 PathResult trace_path(const Scene& scene, const Ray& camera_ray, Sampler& sampler,

@@ -16,15 +16,15 @@ Rgb exp_rgb(const Rgb& x) { return {std::exp(x.r), std::exp(x.g), std::exp(x.b)}
 }  // namespace
 
 FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                              const Ray& ray, Sampler& sampler, Rgb& throughput, Rgb& emitted) {
-  const bool emissive = media.has_emission();
+                              const Ray& ray, Sampler& sampler, Rgb& throughput,
+                              std::vector<ThroughputStep>* steps) {
+  if (steps) steps->push_back({0.f, throughput});
   FreeFlight flight;
   for (const MajorantSpan& span : spans) {
     const float sigma_maj = span.sigma_maj;
     // Collision-integral estimator with a grey majorant: every event's
     // weight is (its coefficient / sigma_maj) / (its probability).
     auto at_collision = [&](float t, const Vec3& p, const MediumCoefficients& c) {
-      if (emissive && !c.emission.is_black()) emitted += throughput * c.emission / sigma_maj;
       const float p_absorb = c.sigma_a.average() / sigma_maj;
       const float p_scatter = c.sigma_s.average() / sigma_maj;
       const float p_null = std::max(0.f, 1.f - p_absorb - p_scatter);
@@ -43,7 +43,11 @@ FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantS
         return false;
       }
       const Rgb sigma_n = Rgb(sigma_maj) - c.sigma_a - c.sigma_s;
-      throughput *= sigma_n / (sigma_maj * p_null);
+      const Rgb weight = sigma_n / (sigma_maj * p_null);
+      if (!(weight == Rgb(1.f))) {  // grey media: always 1, no step
+        throughput *= weight;
+        if (steps) steps->push_back({t, throughput});
+      }
       return true;
     };
     if (!for_each_tentative_collision(media, span, ray, sampler, at_collision)) return flight;

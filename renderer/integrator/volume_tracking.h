@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "renderer/core/ray.h"
+#include "renderer/integrator/volume_emission.h"
 #include "renderer/media/media_set.h"
 #include "renderer/sampling/sampler.h"
 
@@ -41,10 +42,12 @@ struct FreeFlight {
 
 // Samples the next real collision along ray within [0, tmax) by delta
 // tracking; `spans` are media.majorant_spans(ray, tmax). Updates the path
-// throughput with the null-collision weights; volume emission met on the
-// way (times throughput) is added to `emitted`.
+// throughput with the null-collision weights. With `steps` (for volume
+// emission, volume_emission.h), the throughput before the flight and after
+// each null collision is appended to it (not the real collision's weight).
 FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                              const Ray& ray, Sampler& sampler, Rgb& throughput, Rgb& emitted);
+                              const Ray& ray, Sampler& sampler, Rgb& throughput,
+                              std::vector<ThroughputStep>* steps = nullptr);
 
 // For rays whose spans are all analytic (homogeneous media only):
 // transmittance from the ray origin to t, and the density with which

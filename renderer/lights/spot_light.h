@@ -16,6 +16,7 @@
 #include <optional>
 
 #include "renderer/lights/light_interface.h"
+#include "renderer/lights/sphere_cone.h"
 #include "renderer/math/constants.h"
 
 namespace vesper {
@@ -31,11 +32,17 @@ struct SpotLight {
   Rgb intensity;                  // W/sr on the axis
   float cos_cone = 0.f;           // cos(cone_angle)
   float cos_falloff_start = 0.f;  // cos(falloff_start) >= cos_cone
+  float radius = 0;               // 0: a delta light; else a sphere light (sphere_cone.h)
 
   float falloff(const Vec3& w_from_light) const {
     return smoothstep(cos_cone, cos_falloff_start, dot(w_from_light, direction));
   }
-  std::optional<LightSample> sample(const Vec3& p, Vec2 /*u*/) const {
+  std::optional<LightSample> sample(const Vec3& p, Vec2 u) const {
+    if (radius > 0.f) {  // the cone's profile, from the centre toward p
+      const float f = falloff(normalize(p - position));
+      if (!(f > 0.f)) return std::nullopt;
+      return sample_sphere_light(p, position, radius, intensity * f, u);
+    }
     const Vec3 d = position - p;
     const float dist2 = length_squared(d);
     if (!(dist2 > 0.f)) return std::nullopt;
@@ -50,7 +57,7 @@ struct SpotLight {
   float power(float /*scene_radius*/) const {
     return intensity.average() * 2.f * kPi * (1.f - 0.5f * (cos_falloff_start + cos_cone));
   }
-  std::optional<LightBounds> bounds() const { return LightBounds{position, position}; }
+  std::optional<LightBounds> bounds() const { return sphere_bounds(position, radius); }
 };
 
 }  // namespace vesper

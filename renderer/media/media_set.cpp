@@ -112,10 +112,6 @@ MediumCoefficients MediaSet::coefficients(const Vec3& p) const {
         c.sigma_a += g.sigma_a * d;
         c.sigma_s += g.sigma_s * d;
       }
-      if (g.emission) {
-        const float e = g.emission->sample(g.render_to_emission_index.apply_point(p));
-        if (e > 0.f) c.emission += g.emission_coefficient * e;
-      }
     }
   }
   return c;

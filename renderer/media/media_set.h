@@ -14,7 +14,7 @@ struct MajorantSpan {
 };
 
 struct MediumCoefficients {
-  Rgb sigma_a, sigma_s, emission;
+  Rgb sigma_a, sigma_s;
 };
 
 class MediaSet {

@@ -33,6 +33,7 @@ struct GridMedium {
   std::shared_ptr<const DensityGrid> density;
   std::shared_ptr<const DensityGrid> emission;  // may be null
   std::shared_ptr<const MajorantGrid> majorants;
+  std::shared_ptr<const MajorantGrid> emission_majorants;  // when emission is set
   Transformf render_to_index;
   Transformf render_to_emission_index;  // when emission is set
   float density_scale = 1;              // times sigma_a / sigma_s below

@@ -37,6 +37,8 @@ inline constexpr char kSamplingPasses[] = "vesper:sampling_passes";
 inline constexpr std::array<const char*, 4> kPerRangeFigures{kNoiseReached, kSppMean, kStopReason,
                                                              kSamplingPasses};
 
+// render.clamp / --clamp (biased): the indirect sample clamp, when set.
+inline constexpr char kClamp[] = "vesper:clamp";
 // render_frame(): the number of render passes (beauty + variant layers).
 inline constexpr char kPasses[] = "vesper:passes";
 // `vesper render --frame N`.

@@ -1,5 +1,6 @@
 #include "renderer/render/render.h"
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -31,6 +32,8 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   pt.want_aovs = layout.albedo >= 0 || layout.normal >= 0 || layout.depth >= 0;
   pt.equiangular = options.equiangular;
   pt.want_camera_transmittance = layout.need_transmittance;
+  const std::optional<double> clamp = options.clamp ? options.clamp : scene.render.clamp;
+  pt.indirect_clamp = float(clamp.value_or(0.0));
   return pt;
 }
 
@@ -284,6 +287,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                                     .render_seconds = out.stats.seconds,
                                     .nonfinite_samples = out.stats.nonfinite_samples});
   set_sampling_metadata(img.metadata, plan, out.stats, out.film);
+  if (pt.indirect_clamp > 0.f)  // biased: the image says so
+    img.metadata[metadata_key::kClamp] = fmt::format("{}", pt.indirect_clamp);
   if (!options.keep_sums) out.film = FilmSums();
   return out;
 }

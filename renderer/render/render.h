@@ -40,6 +40,7 @@ struct RenderOptions {
   std::optional<double> noise_target;
   std::optional<int> min_spp, max_spp;
   std::optional<double> time_limit;
+  std::optional<double> clamp;  // overrides render.clamp (the indirect sample clamp)
   // Take exactly this many samples in each pixel (width * height counts, at
   // most the range) instead of deciding: variant layers follow the beauty's
   // adaptive counts. Not owned.

@@ -20,7 +20,9 @@ RenderLight make(const QuadLightDesc& d, const RenderSpace& space) {
 }
 
 RenderLight make(const PointLightDesc& d, const RenderSpace& space) {
-  return {PointLight{space.point(d.position), d.intensity * space.intensity_scale()}, std::nullopt};
+  return {PointLight{space.point(d.position), d.intensity * space.intensity_scale(),
+                     float(d.radius * space.inv_scale)},
+          std::nullopt};
 }
 
 RenderLight make(const SpotLightDesc& d, const RenderSpace& space) {
@@ -30,6 +32,7 @@ RenderLight make(const SpotLightDesc& d, const RenderSpace& space) {
   sp.intensity = d.intensity * space.intensity_scale();
   sp.cos_cone = cos_degrees(d.cone_angle);
   sp.cos_falloff_start = cos_degrees(d.falloff_start);
+  sp.radius = float(d.radius * space.inv_scale);
   return {sp, std::nullopt};
 }
 

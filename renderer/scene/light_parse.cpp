@@ -23,6 +23,7 @@ SpotLightDesc parse_spot(JsonReader& node) {
   spot.intensity = read_rgb(node, "intensity", Range::non_negative());
   spot.cone_angle = node.number("cone_angle", Range::left_open(0, 180));
   spot.falloff_start = node.number("falloff_start", spot.cone_angle, Range::non_negative());
+  spot.radius = node.number("radius", 0.0, Range::non_negative());
   if (spot.falloff_start > spot.cone_angle) {
     node.fail_key("falloff_start", "expected falloff_start <= cone_angle (" +
                                        describe_json(node.json()["cone_angle"]) + "), got " +
@@ -69,14 +70,15 @@ LightDesc parse_light(JsonReader node, SceneParseContext& ctx) {
       break;
     }
     case 1: {
-      node.allow_keys({"type", "position", "intensity", "group"});
+      node.allow_keys({"type", "position", "intensity", "radius", "group"});
       light.light = PointLightDesc{read_vec3(node, "position"),
-                                   read_rgb(node, "intensity", Range::non_negative())};
+                                   read_rgb(node, "intensity", Range::non_negative()),
+                                   node.number("radius", 0.0, Range::non_negative())};
       break;
     }
     case 2: {
-      node.allow_keys(
-          {"type", "position", "direction", "intensity", "cone_angle", "falloff_start", "group"});
+      node.allow_keys({"type", "position", "direction", "intensity", "cone_angle", "falloff_start",
+                       "radius", "group"});
       light.light = parse_spot(node);
       break;
     }

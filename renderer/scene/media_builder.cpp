@@ -17,6 +17,13 @@ Transformf render_to_index(const Transform& t, const DensityGrid& grid, const Ve
   return (inverse(world_from_index) * world_from_render).cast<float>();
 }
 
+std::shared_ptr<const MajorantGrid> majorants_of(const DensityGrid& grid,
+                                                 const MediaBuildOptions& options) {
+  return std::make_shared<MajorantGrid>(options.majorant_grid
+                                            ? MajorantGrid(grid, options.majorant_cell_voxels)
+                                            : MajorantGrid::global(grid));
+}
+
 }  // namespace
 
 MediaSet build_media(const SceneDescription& desc, const Vec3d& origin, double unit_scale,
@@ -44,9 +51,7 @@ MediaSet build_media(const SceneDescription& desc, const Vec3d& origin, double u
     GridMedium g;
     g.density = v.density;
     g.render_to_index = render_to_index(v.transform, *v.density, origin, unit_scale);
-    g.majorants = std::make_shared<MajorantGrid>(
-        options.majorant_grid ? MajorantGrid(*v.density, options.majorant_cell_voxels)
-                              : MajorantGrid::global(*v.density));
+    g.majorants = majorants_of(*v.density, options);
     g.density_scale = float(v.density_scale);
     g.sigma_a = v.sigma_a * per_render_unit;
     g.sigma_s = v.sigma_s * per_render_unit;
@@ -54,6 +59,7 @@ MediaSet build_media(const SceneDescription& desc, const Vec3d& origin, double u
     if (v.emission && v.emission_scale > 0) {
       g.emission = v.emission;
       g.render_to_emission_index = render_to_index(v.transform, *v.emission, origin, unit_scale);
+      g.emission_majorants = majorants_of(*v.emission, options);
       g.emission_coefficient = v.emission_color * float(v.emission_scale * unit_scale);
     }
     if (g.density_scale > 0.f || g.emission) media.push_back(std::move(g));

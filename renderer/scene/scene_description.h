@@ -66,6 +66,9 @@ struct RenderDesc {
   std::optional<double> noise_target;
   std::optional<int> min_spp, max_spp;
   std::optional<double> time_limit;  // seconds of wall clock, checked after each pass
+  // render.clamp: the largest RGB component a camera sample's indirect light
+  // may have (integrator/path_context.h). Biased; unset = off.
+  std::optional<double> clamp;
 };
 
 struct DiffuseMaterialDesc {
@@ -112,12 +115,14 @@ struct QuadLightDesc {
 };
 struct PointLightDesc {
   Vec3d position;
-  Rgb intensity;  // W/sr
+  Rgb intensity;      // W/sr
+  double radius = 0;  // scene units; > 0: a sphere light
 };
 struct SpotLightDesc {
   Vec3d position, direction;  // direction normalized by the loader
   Rgb intensity;
   double cone_angle = 30, falloff_start = 25;  // half-angles, degrees; falloff_start <= cone_angle
+  double radius = 0;                           // scene units; > 0: a sphere light
 };
 struct SunLightDesc {
   Vec3d direction;   // from the scene toward the sun, normalized by the loader

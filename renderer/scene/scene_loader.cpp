@@ -86,12 +86,13 @@ void parse_sampling_budget(JsonReader& node, RenderDesc& render) {
                                  " is greater than max_spp " + std::to_string(*render.max_spp));
   if (node.optional_child("time_limit"))
     render.time_limit = node.number("time_limit", Range::positive());
+  if (node.optional_child("clamp")) render.clamp = node.number("clamp", Range::positive());
 }
 
 RenderDesc parse_render(JsonReader node) {
   node.expect_object();
-  node.allow_keys(
-      {"spp", "max_depth", "seed", "aovs", "noise_target", "min_spp", "max_spp", "time_limit"});
+  node.allow_keys({"spp", "max_depth", "seed", "aovs", "noise_target", "min_spp", "max_spp",
+                   "time_limit", "clamp"});
   RenderDesc render;
   render.spp = int(node.integer("spp", 1, INT_MAX));
   render.max_depth = int(node.integer("max_depth", 8, 1, INT_MAX));

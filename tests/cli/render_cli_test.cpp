@@ -82,6 +82,16 @@ TEST_F(RenderCli, RejectsAnUnknownAovAndAMissingOutputDirectory) {
   EXPECT_NE(r.err.find("no/such/dir"), std::string::npos) << r.err;
 }
 
+TEST_F(RenderCli, ClampIsRecordedInTheHeaderAndANonPositiveOneIsRefused) {
+  const fs::path exr = dir_ / "clamped.exr";
+  const RunResult r = run(kCornell + " -o " + exr.string() + " --spp 1 --clamp 2.5 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(vesper::read_exr(exr).metadata.at("vesper:clamp"), "2.5");
+  const RunResult bad = run(kCornell + " -o " + (dir_ / "x.exr").string() + " --clamp 0");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--clamp"), std::string::npos) << bad.err;
+}
+
 TEST_F(RenderCli, MissingSceneFileIsAClearError) {
   const RunResult r = run((dir_ / "nope.json").string() + " -o " + (dir_ / "x.exr").string());
   EXPECT_NE(r.exit_code, 0);

@@ -92,6 +92,19 @@ TEST(Analytic, PlaneUnderPointLightFollowsInverseSquareCosine) {
   });
 }
 
+TEST(Analytic, PlaneUnderSphereLightGetsTheSphereIrradiance) {
+  // A uniform sphere of radiance I / (pi r^2) wholly above the horizon gives
+  // E = pi L sin^2(alpha) cos(theta) = I cos(theta) / d^2 (alpha the
+  // sphere's angular radius, theta from the normal to its centre), now with
+  // noise: the light is sampled by solid angle.
+  const Vec3d p{0.3, 1.2, -0.1};
+  const double I = 2.0;
+  expect_plane_matches(PointLightDesc{p, Rgb(float(I)), 0.6}, [&](const Vec3d& x) {
+    const Vec3d d = p - x;
+    return I * d.y / std::pow(length(d), 3.0);
+  });
+}
+
 TEST(Analytic, PlaneUnderSpotLightFollowsSmoothstepFalloff) {
   const Vec3d p{0.0, 1.0, 0.0}, axis = normalize(Vec3d(0.2, -1, 0.1));
   const double I = 3.0, cone = 35, start = 20;

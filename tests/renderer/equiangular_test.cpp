@@ -60,7 +60,7 @@ TEST(Equiangular, DensityIntegratesToOne) {
 }
 
 // A spot light shining through fog past an occluder: the light-shaft case.
-SceneDescription fog_shaft_scene() {
+SceneDescription fog_shaft_scene(double light_radius = 0) {
   SceneDescription d = empty_scene(24, 24, 16, 4);
   d.camera.from = {0, 1, 4};
   d.camera.to = {0, 0.8, 0};
@@ -68,7 +68,9 @@ SceneDescription fog_shaft_scene() {
   const uint32_t grey = add_material(d, "grey", DiffuseMaterialDesc{Rgb(0.4f)});
   add_quad(d, {-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, grey);
   add_quad(d, {-0.3, 1.5, -0.3}, {0.6, 0, 0}, {0, 0, 0.6}, grey);  // occluder under the light
-  add_light(d, SpotLightDesc{{0.1, 2.5, 0.0}, normalize(Vec3d(0, -1, 0)), Rgb(40.f), 40.0, 30.0});
+  add_light(d,
+            SpotLightDesc{
+                {0.1, 2.5, 0.0}, normalize(Vec3d(0, -1, 0)), Rgb(40.f), 40.0, 30.0, light_radius});
   HomogeneousMediumDesc fog;
   fog.sigma_s = Rgb(0.3f);
   fog.sigma_a = Rgb(0.05f);
@@ -80,8 +82,9 @@ SceneDescription fog_shaft_scene() {
   return d;
 }
 
-TEST(Equiangular, OnAndOffRenderTheSameExpectedImage) {
-  const Scene scene = build_scene(fog_shaft_scene());
+// Renders the scene with equiangular sampling on and off in batches; the
+// tiles' means must agree (t-test, alpha 0.01, Sidak over the tiles).
+void expect_on_and_off_agree(const Scene& scene) {
   const int batches = 10;
   auto stats_with = [&](bool equiangular, uint64_t seed0) {
     TileStats st;
@@ -123,6 +126,16 @@ TEST(Equiangular, OnAndOffRenderTheSameExpectedImage) {
   }
   std::printf("mean tile standard error: equiangular on %.5f, off %.5f\n", se_on / on.se.size(),
               se_off / off.se.size());
+}
+
+TEST(Equiangular, OnAndOffRenderTheSameExpectedImage) {
+  expect_on_and_off_agree(build_scene(fog_shaft_scene()));
+}
+
+TEST(Equiangular, AimsAtASphereLightsCentreWithoutBias) {
+  // A spot light of radius 0.15: equiangular distances toward its centre,
+  // then a point sampled on the sphere.
+  expect_on_and_off_agree(build_scene(fog_shaft_scene(0.15)));
 }
 
 }  // namespace
