@@ -9,6 +9,7 @@
 #include "cli/fetch.h"
 #include "cli/job_watch.h"
 #include "cli/submit.h"
+#include "common/utf8.h"
 #include "protocol/job_messages.h"
 #include "protocol/paths.h"
 
@@ -74,7 +75,7 @@ std::string log_tail(FarmClient& client, int64_t job, int64_t task) {
   std::string tail;
   for (size_t i = lines.size() > 6 ? lines.size() - 6 : 0; i < lines.size(); ++i)
     tail += (tail.empty() ? "" : " | ") + lines[i];
-  if (tail.size() > 800) tail = "..." + tail.substr(tail.size() - 800);
+  if (tail.size() > 800) tail = "..." + utf8_tail(tail, 800);  // a log may hold any bytes
   return tail.empty() ? "no log" : "its log ends: " + tail;
 }
 

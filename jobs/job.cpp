@@ -1,6 +1,7 @@
 #include "jobs/job.h"
 
 #include "common/control_characters.h"
+#include "common/scene_reference.h"
 
 namespace vesper {
 
@@ -40,14 +41,14 @@ std::string asset_name_problem(std::string_view name) {
   if (std::string why = control_character_problem(name); !why.empty()) return why;
   if (name.find('\\') != std::string_view::npos)
     return "contains a backslash (use '/' to separate directories)";
-  if (name.front() == '/') return "is an absolute path (expected a path relative to the scene)";
-  size_t begin = 0;
-  for (;;) {
+  // Absolute paths and '..': the rule every file a scene references follows.
+  if (std::string why = outside_reference_problem(name); !why.empty()) return why;
+  // Beyond it, names are canonical (no empty or '.' segment): one file, one name.
+  for (size_t begin = 0;;) {
     const size_t end = std::min(name.find('/', begin), name.size());
     const std::string_view seg = name.substr(begin, end - begin);
     if (seg.empty()) return "has an empty path segment ('//' or a trailing '/')";
-    if (seg == "." || seg == "..")
-      return "has a '" + std::string(seg) + "' segment (names cannot leave the scene directory)";
+    if (seg == ".") return "has a '.' segment (expected a canonical relative path)";
     if (end == name.size()) break;
     begin = end + 1;
   }
