@@ -7,6 +7,7 @@
 #include "cli/local_server.h"
 #include "common/sha256.h"
 #include "protocol/error_body.h"
+#include "protocol/fields.h"
 #include "protocol/paths.h"
 #include "worker/http_client.h"
 
@@ -74,6 +75,38 @@ FarmClient::FarmClient(std::string url, std::string token)
     : url_(std::move(url)), http_(std::make_unique<worker_detail::HttpClient>(url_, token)) {}
 
 FarmClient::~FarmClient() = default;
+
+nlohmann::json FarmClient::get_job_json(int64_t job) {
+  nlohmann::json all = get_json(protocol::job_path(job));
+  // A task page may be followed by more. Each page lists the frames of its
+  // tasks (a frame split over two pages is in both: the later one is kept);
+  // the summary of the first page stands for the whole.
+  for (auto next = all.find(protocol::field::kTasksNext); next != all.end();
+       next = all.find(protocol::field::kTasksNext)) {
+    const auto after = next->get<int64_t>();
+    all.erase(next);
+    nlohmann::json page =
+        get_json(protocol::job_path(job) + "?" + std::string(protocol::kTasksAfterParam) + "=" +
+                 std::to_string(after));
+    auto& tasks = all[protocol::field::kTasks];
+    for (auto& t : page[protocol::field::kTasks]) tasks.push_back(std::move(t));
+    auto& frames = all[protocol::field::kFrames];
+    for (auto& f : page[protocol::field::kFrames]) {
+      if (!frames.empty() &&
+          frames.back().at(protocol::field::kFrame) == f.at(protocol::field::kFrame))
+        frames.back() = std::move(f);
+      else
+        frames.push_back(std::move(f));
+    }
+    if (page.contains(protocol::field::kTasksNext))
+      all[protocol::field::kTasksNext] = page[protocol::field::kTasksNext];
+  }
+  return all;
+}
+
+protocol::JobDetail FarmClient::get_job(int64_t job) {
+  return get_job_json(job).get<protocol::JobDetail>();
+}
 
 nlohmann::json FarmClient::get_json(const std::string& path) {
   return parse_answer("GET " + path, http_->get(protocol::api(path)));

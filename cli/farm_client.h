@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/farm_config.h"
+#include "protocol/job_messages.h"
 
 namespace vesper::worker_detail {
 class HttpClient;
@@ -49,6 +50,10 @@ class FarmClient {
   nlohmann::json get_json(const std::string& path);
   nlohmann::json post_json(const std::string& path, const nlohmann::json& body);
   std::string get_text(const std::string& path);
+  // GET /jobs/{id} with every page of its task list (protocol::kTasksAfterParam)
+  // joined into one answer: the JSON, and as protocol::JobDetail.
+  nlohmann::json get_job_json(int64_t job);
+  protocol::JobDetail get_job(int64_t job);
   // Uploads a file as a blob unless the server has it; returns its sha256.
   std::string put_blob(const std::filesystem::path& file);
   // Streams a GET into `file` (written as file + ".part", renamed when complete).

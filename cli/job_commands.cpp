@@ -85,7 +85,7 @@ int run_status(const JobCommandOptions& o) {
       for (const auto& j : jobs) std::printf("%s\n", describe_job(j).c_str());
       return 0;
     }
-    const nlohmann::json answer = c.get_json(protocol::job_path(*o.job));
+    const nlohmann::json answer = c.get_job_json(*o.job);
     if (o.json) {
       std::printf("%s\n", answer.dump(2).c_str());
       return 0;
@@ -169,7 +169,7 @@ int run_retry(const JobCommandOptions& o) {
 
 int run_logs(const JobCommandOptions& o) {
   return with_client(o, [&](FarmClient& c) {
-    const auto j = c.get_json(protocol::job_path(*o.job)).get<protocol::JobDetail>();
+    const auto j = c.get_job(*o.job);
     int shown = 0;
     for (const protocol::TaskInfo& t : j.tasks) {
       if (!t.has_log) continue;

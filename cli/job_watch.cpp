@@ -130,7 +130,7 @@ std::vector<protocol::JobDetail> wait_for_jobs(FarmClient& client, const std::ve
     try {
       for (size_t i = 0; i < jobs.size(); ++i) {
         if (over[i]) continue;
-        last[i] = client.get_json(protocol::job_path(jobs[i])).get<protocol::JobDetail>();
+        last[i] = client.get_job(jobs[i]);
         report_failed_tasks(last[i], reported);
         over[i] = wait_is_over(client, last[i]);
       }

@@ -201,13 +201,12 @@ int submit_wait_fetch(const UpPlan& plan, Server& server, LocalWorkers& workers,
     spdlog::warn(
         "interrupted: {}; kept in {} (`vesper server --data-dir {}` serves it, "
         "`vesper fetch` gets its frames)",
-        describe_job(client.get_json(protocol::job_path(s.id)).get<protocol::JobDetail>()),
-        plan.data_dir.string(), plan.data_dir.string());
+        describe_job(client.get_job(s.id)), plan.data_dir.string(), plan.data_dir.string());
     return 130;
   }
   fetched = fetch_frames(client, s.id, plan.out_dir);  // waits for the merges
   // After the merges: the job with the noise its frames reached.
-  const auto finished = client.get_json(protocol::job_path(s.id)).get<protocol::JobDetail>();
+  const auto finished = client.get_job(s.id);
   spdlog::info("{}", describe_job(finished));
   return fetched.missing.empty() ? 0 : 3;
 }

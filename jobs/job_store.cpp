@@ -1,6 +1,7 @@
 #include "jobs/job_store.h"
 
 #include <algorithm>
+#include <climits>
 #include <cstdint>
 #include <random>
 
@@ -133,7 +134,12 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
         .bind(4, spec.assets[i].blob)
         .run();
   const int split = spec.samples_per_task > 0 ? spec.samples_per_task : spec.spp;
-  for (int frame : spec.frames)
+  // Inserted in leasing order, so task ids follow (frame, sample range): a
+  // page of the task list is a range of ids.
+  std::vector<int> frames = spec.frames;
+  std::sort(frames.begin(), frames.end());
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  for (int frame : frames)
     for (int b = 0; b < spec.spp; b += split) {
       sql::Stmt(db,
                 "INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(?1, ?2, "
@@ -327,24 +333,39 @@ std::vector<JobSummary> JobStore::jobs() const {
   return out;
 }
 
-std::vector<Task> JobStore::tasks(int64_t job) const {
+std::vector<Task> JobStore::tasks(int64_t job, int64_t after, size_t limit) const {
   sql::Stmt s(impl_->db, (std::string("SELECT ") + kTaskColumns +
-                          " FROM tasks WHERE job_id = ?1 ORDER BY frame, sample_begin")
+                          " FROM tasks WHERE job_id = ?1 AND id > ?2 ORDER BY id LIMIT ?3")
                              .c_str());
-  s.bind(1, job);
+  s.bind(1, job).bind(2, after).bind(3, limit == 0 ? int64_t(-1) : int64_t(limit));
   std::vector<Task> out;
   while (s.step()) out.push_back(read_task(s));
   return out;
 }
 
+JobStore::ReadSnapshot::ReadSnapshot(JobStore& store) : store_(store) {
+  store_.impl_->db.exec("BEGIN DEFERRED");
+}
+JobStore::ReadSnapshot::~ReadSnapshot() {
+  try {
+    store_.impl_->db.exec("COMMIT");
+  } catch (const StoreError&) {
+    // A read transaction has nothing to lose; the next BEGIN would fail loudly.
+  }
+}
+
 std::vector<Asset> JobStore::assets(int64_t job) const { return impl_->assets(job); }
 
 std::vector<FrameStatus> JobStore::frames(int64_t job) const {
-  return impl_->frames(job, std::nullopt);
+  return impl_->frames(job, INT_MIN, INT_MAX);
+}
+
+std::vector<FrameStatus> JobStore::frames(int64_t job, int first, int last) const {
+  return impl_->frames(job, first, last);
 }
 
 std::optional<FrameStatus> JobStore::frame(int64_t job, int frame) const {
-  auto f = impl_->frames(job, frame);
+  auto f = impl_->frames(job, frame, frame);
   if (f.empty()) return std::nullopt;
   return f[0];
 }
@@ -352,7 +373,7 @@ std::optional<FrameStatus> JobStore::frame(int64_t job, int frame) const {
 std::string JobStore::record_frame_output(int64_t job, int frame, const std::string& blob,
                                           double now) {
   sql::Transaction tx(impl_->db);
-  const auto f = impl_->frames(job, frame);
+  const auto f = impl_->frames(job, frame, frame);
   if (f.empty() || !f[0].complete())
     throw StoreError("job " + std::to_string(job) + " frame " + std::to_string(frame) +
                      " is not finished; its output cannot be recorded");
@@ -362,10 +383,14 @@ std::string JobStore::record_frame_output(int64_t job, int frame, const std::str
 }
 
 std::vector<std::pair<int64_t, int>> JobStore::frames_awaiting_merge() const {
+  // Frames of several tasks are those with a sample range beginning after 0
+  // (an index of split tasks only): one-task frames, most of a big job, cost nothing.
   sql::Stmt s(impl_->db,
-              "SELECT t.job_id, t.frame FROM tasks t LEFT JOIN frame_outputs o ON o.job_id = "
-              "t.job_id AND o.frame = t.frame WHERE o.blob IS NULL GROUP BY t.job_id, t.frame "
-              "HAVING COUNT(*) > 1 AND SUM(t.state <> 'done') = 0 ORDER BY t.job_id, t.frame");
+              "SELECT s.job_id, s.frame FROM (SELECT DISTINCT job_id, frame FROM tasks WHERE "
+              "sample_begin > 0) s LEFT JOIN frame_outputs o ON o.job_id = s.job_id AND o.frame "
+              "= s.frame WHERE o.blob IS NULL AND NOT EXISTS(SELECT 1 FROM tasks t WHERE "
+              "t.job_id = s.job_id AND t.frame = s.frame AND t.state <> 'done') "
+              "ORDER BY s.job_id, s.frame");
   std::vector<std::pair<int64_t, int>> out;
   while (s.step()) out.emplace_back(s.i64(0), int(s.i64(1)));
   return out;

@@ -75,13 +75,18 @@ class JobStore {
 
   std::optional<JobSummary> job(int64_t job) const;
   std::vector<JobSummary> jobs() const;
-  std::vector<Task> tasks(int64_t job) const;
+  // The job's tasks in leasing order (frame, then sample range), which is id
+  // order: those with an id above `after`, at most `limit` of them (a page of
+  // a big job's task list; 0 = no limit).
+  std::vector<Task> tasks(int64_t job, int64_t after = 0, size_t limit = 0) const;
   bool blocked(int64_t job, const std::string& worker) const;
   std::vector<std::string> blocked_workers(int64_t job) const;
   std::vector<Asset> assets(int64_t job) const;
 
-  // Frames of a job (ascending), with their tasks' results and recorded output.
+  // Frames of a job (ascending), with their tasks' results and recorded
+  // output: all, or those numbered first … last (a page of the task list's).
   std::vector<FrameStatus> frames(int64_t job) const;
+  std::vector<FrameStatus> frames(int64_t job, int first, int last) const;
   std::optional<FrameStatus> frame(int64_t job, int frame) const;
   // Records `blob` as the output of a finished frame, once: when an output is
   // recorded already (another merge won the race) it is kept. Returns the
@@ -104,6 +109,21 @@ class JobStore {
   // Records what a frame's output says of its noise, once (a second record
   // changes nothing). Throws StoreError if the frame has no output.
   void record_frame_noise(int64_t job, int frame, const FrameNoise& noise);
+
+  // While one lives, every read of this JobStore sees one consistent state
+  // (a read transaction; in WAL mode writers on other connections go on).
+  // For a second, read-only JobStore on the same file: the server answers
+  // reads from one without holding the writers' lock (server/locked_store.h).
+  class ReadSnapshot {
+   public:
+    explicit ReadSnapshot(JobStore& store);
+    ~ReadSnapshot();
+    ReadSnapshot(const ReadSnapshot&) = delete;
+    ReadSnapshot& operator=(const ReadSnapshot&) = delete;
+
+   private:
+    JobStore& store_;
+  };
 
   struct Impl;
 

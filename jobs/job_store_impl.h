@@ -30,8 +30,8 @@ struct JobStore::Impl {
   // The current task of a lease id, if the lease is still current.
   std::optional<Task> leased_task(const std::string& lease_id) const;
   std::vector<Asset> assets(int64_t job) const;
-  // A job's frames (or only frame `only`), ascending.
-  std::vector<FrameStatus> frames(int64_t job, std::optional<int> only) const;
+  // A job's frames numbered first … last, ascending.
+  std::vector<FrameStatus> frames(int64_t job, int first, int last) const;
 
   // Records a frame's output unless one is recorded already; returns the recorded blob.
   std::string record_output(int64_t job, int frame, const std::string& blob, double now);

@@ -33,7 +33,16 @@ Stmt::Stmt(const Db& db, const char* sql) : db_(db) {
   if (sqlite3_prepare_v2(db.get(), sql, -1, &s_, nullptr) != SQLITE_OK)
     db.fail(std::string("prepare ") + sql);
 }
-Stmt::~Stmt() { sqlite3_finalize(s_); }
+namespace {
+thread_local uint64_t vm_steps = 0;
+}
+
+uint64_t vm_steps_on_this_thread() { return vm_steps; }
+
+Stmt::~Stmt() {
+  vm_steps += uint64_t(sqlite3_stmt_status(s_, SQLITE_STMTSTATUS_VM_STEP, 0));
+  sqlite3_finalize(s_);
+}
 Stmt& Stmt::bind(int i, int64_t v) {
   sqlite3_bind_int64(s_, i, v);
   return *this;

@@ -40,6 +40,7 @@ inline constexpr const char* kJobs = "jobs";
 inline constexpr const char* kJob = "job";
 inline constexpr const char* kTasks = "tasks";
 inline constexpr const char* kBlockedWorkers = "blocked_workers";
+inline constexpr const char* kTasksNext = "tasks_next";
 inline constexpr const char* kRequeued = "requeued";
 
 // Noise targets and time limits (a job's render budget) and what a frame reached

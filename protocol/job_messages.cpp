@@ -85,10 +85,10 @@ VESPER_JSON_FIELDS(BlobStored, required(f::kSha256, &BlobStored::sha256),
 
 namespace {
 // The fields JobDetail adds to its summary's (one flat object on the wire).
-constexpr auto kJobDetailFields =
-    std::tuple{required(f::kTasks, &JobDetail::tasks),
-               required(f::kBlockedWorkers, &JobDetail::blocked_workers),
-               optional(f::kFrames, &JobDetail::frames)};
+constexpr auto kJobDetailFields = std::tuple{
+    required(f::kTasks, &JobDetail::tasks),
+    required(f::kBlockedWorkers, &JobDetail::blocked_workers),
+    optional(f::kFrames, &JobDetail::frames), optional(f::kTasksNext, &JobDetail::tasks_next)};
 constexpr const char* kFrameStates[] = {"pending", "ready", "failed"};  // by FrameState
 }  // namespace
 

@@ -111,6 +111,7 @@ struct JobDetail {
   std::vector<TaskInfo> tasks;
   std::vector<std::string> blocked_workers;  // worker ids on the job's blocklist
   std::vector<FrameInfo> frames;             // as GET /jobs/{id}/frames lists them
+  std::optional<int64_t> tasks_next;         // more tasks: the next page's tasks_after
 };
 
 // POST /jobs/{id}/cancel|pause|resume|retry-failed

@@ -37,6 +37,12 @@ inline constexpr std::string_view kBlob = "/blobs/{sha256}";
 
 // The query parameter of POST /jobs that validates without creating ("1" or "true").
 inline constexpr std::string_view kDryRunParam = "dry_run";
+// GET /jobs/{id}: a page of the task list, the tasks with ids above
+// `tasks_after` (0), at most `tasks_limit` (kMaxTaskPage) of them; the answer's
+// `tasks_next` is the `tasks_after` of the next page, absent on the last.
+inline constexpr std::string_view kTasksAfterParam = "tasks_after";
+inline constexpr std::string_view kTasksLimitParam = "tasks_limit";
+inline constexpr int kMaxTaskPage = 10000;
 // Response headers: the frame's blob (GET .../frames/{frame}).
 inline constexpr std::string_view kBlobHeader = "X-Vesper-Blob";
 

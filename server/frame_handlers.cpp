@@ -30,7 +30,7 @@ int status_of(FrameMerger::State s) {
 
 ApiResponse list(const FrameHandlerDeps& d, const ApiRequest& req) {
   const int64_t id = id_param(req, 0);
-  const std::vector<FrameStatus> frames = d.store.with([&](JobStore& s) {
+  const std::vector<FrameStatus> frames = d.store.read([&](const JobStore& s) {
     require_job(s, id);
     return s.frames(id);
   });
@@ -43,7 +43,7 @@ ApiResponse list(const FrameHandlerDeps& d, const ApiRequest& req) {
 ApiResponse get(const FrameHandlerDeps& d, const ApiRequest& req) {
   const int64_t id = id_param(req, 0);
   const int frame = frame_param(req, 1);
-  d.store.with([&](JobStore& s) { require_job(s, id); });
+  d.store.read([&](const JobStore& s) { require_job(s, id); });
   const auto out = d.merger.output(id, frame, /*retry=*/true);
   if (!out) throw ApiError(404, "job " + std::to_string(id) + " has no frame " + req.params[1]);
   if (out->state != FrameMerger::State::Ready) throw ApiError(status_of(out->state), out->message);

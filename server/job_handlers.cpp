@@ -2,6 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <charconv>
+
 #include <nlohmann/json.hpp>
 
 #include "common/json_error.h"
@@ -9,6 +12,7 @@
 #include "jobs/scene_references.h"
 #include "protocol/fields.h"
 #include "protocol/job_messages.h"
+#include "protocol/paths.h"
 #include "server/api_error.h"
 #include "server/blob_store.h"
 #include "server/frame_info.h"
@@ -89,22 +93,52 @@ ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
 
 ApiResponse list(const JobHandlerDeps& d, const ApiRequest&) {
   protocol::JobList out;
-  d.store.with([&](JobStore& s) {
+  d.store.read([&](const JobStore& s) {
     for (const auto& j : s.jobs()) out.jobs.push_back(to_wire(j));
   });
   return json_response(200, out);
 }
 
+// A query parameter that must be an integer in [lo, hi] when present.
+int64_t int_query(const ApiRequest& req, std::string_view key, int64_t lo, int64_t hi,
+                  int64_t fallback) {
+  const std::string text = req.query_value(std::string(key));
+  if (text.empty()) return fallback;
+  int64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || v < lo || v > hi)
+    throw ApiError(400, "query parameter " + std::string(key) + "='" + text +
+                            "': expected an integer from " + std::to_string(lo) + " to " +
+                            std::to_string(hi));
+  return v;
+}
+
+// One page of the task list (protocol::kTasksAfterParam): a 100 000-task job
+// is read in pages, on the reading connection, so no lease waits for it.
 ApiResponse get(const JobHandlerDeps& d, const ApiRequest& req) {
   const int64_t id = id_param(req, 0);
+  const int64_t after = int_query(req, protocol::kTasksAfterParam, 0, INT64_MAX, 0);
+  const int64_t limit =
+      int_query(req, protocol::kTasksLimitParam, 1, protocol::kMaxTaskPage, protocol::kMaxTaskPage);
   protocol::JobDetail out;
   std::vector<Task> tasks;
   std::vector<FrameStatus> frames;
-  d.store.with([&](JobStore& s) {
+  d.store.read([&](const JobStore& s) {
     out.summary = to_wire(require_job(s, id));
-    tasks = s.tasks(id);
+    tasks = s.tasks(id, after, size_t(limit) + 1);  // one more: is there a next page?
     out.blocked_workers = s.blocked_workers(id);
-    frames = s.frames(id);
+    if (tasks.size() > size_t(limit)) {
+      tasks.pop_back();
+      out.tasks_next = tasks.back().id;
+    }
+    // The frames of this page's tasks (ids follow frames, so a short range;
+    // min and max all the same, for jobs submitted before they did).
+    if (!tasks.empty()) {
+      const auto [lo, hi] =
+          std::minmax_element(tasks.begin(), tasks.end(),
+                              [](const Task& a, const Task& b) { return a.frame < b.frame; });
+      frames = s.frames(id, lo->frame, hi->frame);
+    }
   });
   const std::map<int, std::string> merge_failures = d.merger.failures(id);
   for (const FrameStatus& f : frames) out.frames.push_back(frame_info(f, merge_failures));
@@ -146,12 +180,12 @@ ApiResponse act(const JobHandlerDeps& d, const ApiRequest& req, JobAction action
 ApiResponse task_log(const JobHandlerDeps& d, const ApiRequest& req) {
   const int64_t job = id_param(req, 0);
   const int64_t task = id_param(req, 1);
-  const std::vector<Task> tasks = d.store.with([&](JobStore& s) {
+  const std::vector<Task> tasks = d.store.read([&](const JobStore& s) {
     require_job(s, job);
-    return s.tasks(job);
+    return s.tasks(job, task - 1, 1);
   });
-  for (const Task& t : tasks)
-    if (t.id == task) return text_response(t.log, "text/plain; charset=utf-8");
+  if (!tasks.empty() && tasks[0].id == task)
+    return text_response(tasks[0].log, "text/plain; charset=utf-8");
   throw ApiError(404, "job " + std::to_string(job) + " has no task " + std::to_string(task));
 }
 

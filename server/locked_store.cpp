@@ -6,7 +6,7 @@
 
 namespace vesper {
 
-JobSummary require_job(JobStore& store, int64_t id) {
+JobSummary require_job(const JobStore& store, int64_t id) {
   auto j = store.job(id);
   if (!j) throw ApiError(404, "no job " + std::to_string(id));
   return *j;

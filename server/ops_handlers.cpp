@@ -12,7 +12,7 @@ ApiResponse metrics(const OpsHandlerDeps& d, const ApiRequest&) {
   for (TaskState s : {TaskState::Queued, TaskState::Leased, TaskState::Done, TaskState::Failed,
                       TaskState::Canceled, TaskState::Paused})
     m.tasks_by_state[to_string(s)] = 0;
-  d.store.with([&](JobStore& s) {
+  d.store.read([&](const JobStore& s) {
     const auto jobs = s.jobs();
     m.jobs = int64_t(jobs.size());
     for (const auto& j : jobs) {

@@ -33,6 +33,11 @@ ServerConfig prepare(ServerConfig c) {
   return c;
 }
 
+std::unique_ptr<JobStore> open_store(const ServerConfig& c) {
+  return std::make_unique<JobStore>(c.data_dir / "jobs.sqlite",
+                                    StoreOptions{c.lease_seconds, c.blocklist_threshold});
+}
+
 }  // namespace
 
 struct Server::Impl {
@@ -55,9 +60,7 @@ struct Server::Impl {
         tokens(load_or_create_tokens(config.data_dir / "tokens.json")),
         blobs(config.data_dir / "blobs"),
         workers(config.data_dir / "workers.json"),
-        store(std::make_unique<JobStore>(
-            config.data_dir / "jobs.sqlite",
-            StoreOptions{config.lease_seconds, config.blocklist_threshold})),
+        store(open_store(config), open_store(config)),
         clock(config.clock),
         leases(store, clock, workers, config.lease_seconds),
         merger(FrameMergerConfig{config.data_dir, config.vesper_binary, config.merge_retry_seconds},

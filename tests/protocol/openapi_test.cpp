@@ -211,6 +211,7 @@ TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
   JobDetail detail;
   detail.tasks = {task};
   detail.frames = {frame};
+  detail.tasks_next = 1;
   EXPECT_EQ(keys_of(nlohmann::json(detail)), properties(doc, "JobDetail", "JobSummary"));
   EXPECT_EQ(keys_of(nlohmann::json(detail.summary)), properties(doc, "JobSummary"));
 }
