@@ -105,6 +105,36 @@ void print_phase(const Phase& p) {
               percentile(p.lease_ms, 1.0));
 }
 
+struct Reads {
+  Phase phase;
+  std::vector<double> ms;  // each full read of the job
+  std::string error;
+};
+
+// The second phase: full reads of the job, back to back on their own
+// connection, while the worker leases.
+Reads lease_while_read(Api& api, httplib::Client& reader_client, int64_t job,
+                       const std::string& worker, int leases, std::set<int64_t>& completed) {
+  Reads out;
+  std::atomic<bool> stop{false};
+  std::thread reader([&] {
+    Api r{reader_client, api.sub, api.wrk};
+    try {
+      while (!stop) {
+        const auto a = Clock::now();
+        r.job_tasks(job);
+        out.ms.push_back(1e3 * seconds_between(a, Clock::now()));
+      }
+    } catch (const std::exception& e) {
+      out.error = e.what();
+    }
+  });
+  out.phase = lease_loop(api, worker, leases, "lease + complete, job being read", completed);
+  stop = true;
+  reader.join();
+  return out;
+}
+
 int run(const Options& o, const fs::path& dir) {
   ServerConfig config;
   config.data_dir = dir;
@@ -134,26 +164,10 @@ int run(const Options& o, const fs::path& dir) {
   std::vector<Phase> phases;
   phases.push_back(lease_loop(api, worker, o.leases, "lease + complete, alone", completed));
 
-  // The reader: full reads of the job, back to back, while the worker leases.
-  std::atomic<bool> stop{false};
-  std::vector<double> read_ms;
-  std::string reader_error;
-  std::thread reader([&] {
-    Api r{reader_client, api.sub, api.wrk};
-    try {
-      while (!stop) {
-        const auto a = Clock::now();
-        r.job_tasks(job);
-        read_ms.push_back(1e3 * seconds_between(a, Clock::now()));
-      }
-    } catch (const std::exception& e) {
-      reader_error = e.what();
-    }
-  });
-  phases.push_back(
-      lease_loop(api, worker, o.leases, "lease + complete, job being read", completed));
-  stop = true;
-  reader.join();
+  Reads reads = lease_while_read(api, reader_client, job, worker, o.leases, completed);
+  phases.push_back(std::move(reads.phase));
+  const std::vector<double>& read_ms = reads.ms;
+  const std::string& reader_error = reads.error;
 
   // The check: N tasks, exactly the completed ones done.
   const std::vector<json> tasks = api.job_tasks(job);
