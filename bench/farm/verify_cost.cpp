@@ -158,6 +158,7 @@ int main(int argc, char** argv) {
         "check_result of one %dx%d 16-channel ZIP EXR (%zu bytes): median %.2f ms "
         "(50 runs)\n",
         size, size, exrs[0].size(), median(ms));
+    std::fflush(stdout);
     // Alternating, so that both see the same machine load.
     std::vector<double> off, on;
     for (int round = 0; round < 3; ++round) {

@@ -102,6 +102,10 @@ TEST_F(ResultCheckTest, JunkIsRefusedAndTheAttemptCharged) {
   EXPECT_EQ(j.at("tasks").at(0).at("state"), "queued");
   // The refused lease is over: the worker cannot complete it again.
   EXPECT_EQ(complete(l, exr_bytes(dir_, {})).first, 409);
+  // A truncated EXR (header intact, pixels cut) is refused too.
+  const std::string whole = exr_bytes(dir_, {}, 64);
+  const auto [cut, why] = complete(lease(w), whole.substr(0, whole.size() - 100));
+  EXPECT_EQ(cut, 400) << why;
 }
 
 TEST_F(ResultCheckTest, MetadataMustMatchTheTask) {
