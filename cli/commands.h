@@ -115,8 +115,20 @@ struct ServerCommandOptions {
   FarmOptions farm;
   std::optional<std::string> data_dir, host;
   std::optional<int> port;
+  std::vector<std::string> trusted_renderers;  // added to the config's
 };
 int run_server(const ServerCommandOptions& options);
+
+// vesper tokens list|add-worker NAME|revoke NAME|disable-shared|enable-shared:
+// edits the server's tokens.json (server/tokens.h); a running server picks
+// the change up at its next request.
+struct TokensCommandOptions {
+  FarmOptions farm;
+  std::optional<std::string> data_dir;
+  std::string action;  // the subcommand's name
+  std::string name;    // add-worker, revoke
+};
+int run_tokens(const TokensCommandOptions& options);
 
 // vesper worker: pull and render tasks until SIGINT/SIGTERM.
 struct WorkerCommandOptions {

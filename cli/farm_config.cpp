@@ -6,6 +6,8 @@
 #include <functional>
 #include <map>
 
+#include "common/sha256.h"
+
 namespace vesper::cli {
 namespace {
 
@@ -42,6 +44,23 @@ Setter number(double& out, double lo, double hi) {
   };
 }
 
+// An array of SHA-256 hex digests (renderer builds).
+Setter sha256_list(std::vector<std::string>& out) {
+  return [&out](const toml::node& n) {
+    const toml::array* a = n.as_array();
+    if (!a) throw std::invalid_argument("expected an array of sha256 hex strings");
+    out.clear();
+    for (const toml::node& e : *a) {
+      const auto v = e.value<std::string>();
+      if (!e.is_string() || !is_sha256_hex(*v))
+        throw std::invalid_argument(
+            "expected 64 lower-case hex digits (sha256sum of a vesper binary), got " +
+            (e.is_string() ? "'" + *v + "'" : std::string("a non-string")));
+      out.push_back(*v);
+    }
+  };
+}
+
 std::map<std::string, std::map<std::string, Setter>> setters(FarmSettings& s) {
   return {
       {"server",
@@ -52,7 +71,8 @@ std::map<std::string, std::map<std::string, Setter>> setters(FarmSettings& s) {
         {"blocklist_threshold", integer(s.server.blocklist_threshold, 1, 1000)},
         {"max_blob_mib", integer(s.server.max_blob_mib, 1, 16384)},
         {"threads", integer(s.server.threads, 2, 1024)},
-        {"task_timeout", number(s.server.task_timeout, 0, 30 * 86400)}}},
+        {"task_timeout", number(s.server.task_timeout, 0, 30 * 86400)},
+        {"trusted_renderers", sha256_list(s.server.trusted_renderers)}}},
       {"worker",
        {{"server", str(s.worker.server)},
         {"cache_dir", str(s.worker.cache_dir)},

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace vesper::cli {
 
@@ -17,6 +18,9 @@ struct FarmServerSettings {
   int max_blob_mib = 64;
   int threads = 16;
   double task_timeout = 86400;  // the farm default for jobs without one; 0 = none
+  // Renderer builds (sha256) whose results later identical jobs may reuse,
+  // besides the server's own build.
+  std::vector<std::string> trusted_renderers;
 };
 
 struct FarmWorkerSettings {

@@ -17,6 +17,7 @@ ServerConfig server_config(const FarmSettings& s) {
   c.max_blob_bytes = std::size_t(s.server.max_blob_mib) << 20;
   c.threads = s.server.threads;
   c.task_timeout = s.server.task_timeout;
+  c.trusted_renderers = s.server.trusted_renderers;
   return c;
 }
 

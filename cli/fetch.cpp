@@ -1,6 +1,7 @@
 // vesper fetch (and vesper up): a job's frames into a folder.
 #include "cli/fetch.h"
 
+#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include "cli/job_watch.h"
@@ -11,6 +12,19 @@
 #include "protocol/paths.h"
 
 namespace vesper::cli {
+namespace {
+
+// The OpenEXR reader itself opens the header (the file has no meaningful
+// extension to go by): junk bytes, a partial render or a PNG are refused.
+bool is_openexr_file(const std::filesystem::path& file) {
+  auto in = OIIO::ImageInput::create("openexr");
+  OIIO::ImageSpec spec;
+  const bool ok = in && in->open(file.string(), spec);
+  if (!ok) OIIO::geterror();  // no error left pending
+  return ok;
+}
+
+}  // namespace
 
 std::string job_file_stem(const std::string& name, long long job) {
   constexpr size_t kMaxStemBytes = 200;  // leaves room for ".####.comp.hist.json" in 255
@@ -30,13 +44,26 @@ std::string job_file_stem(const std::string& name, long long job) {
 
 void download_frame(FarmClient& client, long long job, const protocol::FrameInfo& frame,
                     const std::filesystem::path& file) {
-  client.download(protocol::frame_path(job, frame.frame), file);
-  if (frame.blob.empty()) return;
-  const auto sha = sha256_file(file);
-  if (!sha || *sha != frame.blob) {
-    std::filesystem::remove(file);
-    throw FarmClientError(file.string() + ": downloaded frame does not match its hash");
+  // Checked under a temporary name, renamed to `file` only when it passed:
+  // a bad frame never appears as an .exr, not even for a moment.
+  const std::filesystem::path tmp = file.string() + ".fetch";
+  client.download(protocol::frame_path(job, frame.frame), tmp);
+  std::string problem;
+  if (!frame.blob.empty()) {
+    const auto sha = sha256_file(tmp);
+    if (!sha || *sha != frame.blob) problem = "downloaded frame does not match its hash";
   }
+  // A server that took a worker's junk (an older server, or one with
+  // verify_results off) must not make `fetch` save it as an image.
+  if (problem.empty() && !is_openexr_file(tmp))
+    problem = "frame " + std::to_string(frame.frame) + " of job " + std::to_string(job) +
+              " from the server is not an OpenEXR image; not saved";
+  if (!problem.empty()) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw FarmClientError(file.string() + ": " + problem);
+  }
+  std::filesystem::rename(tmp, file);
 }
 
 FetchedFrames fetch_frames(FarmClient& client, long long job, const std::filesystem::path& dir) {

@@ -249,7 +249,31 @@ void add_server_and_worker(CLI::App& app, Dispatch& dispatch) {
   sv->add_option("--host", s->host, "Address to bind (default 127.0.0.1)");
   sv->add_option("--port", s->port, "Port (default 8765; 0 = any free port)")
       ->check(CLI::Range(0, 65535));
+  sv->add_option("--trust-renderer", s->trusted_renderers,
+                 "Reuse results of this renderer build (sha256sum of its vesper binary); "
+                 "repeatable, besides the config's trusted_renderers and the server's own build");
   dispatch.on(sv, [s] { return run_server(*s); });
+
+  auto t = std::make_shared<TokensCommandOptions>();
+  auto* tk = app.add_subcommand("tokens", "List, add, revoke the farm's worker tokens");
+  add_farm_options(tk, t->farm, false);
+  tk->add_option("--data-dir", t->data_dir, "Data dir of the server (holds tokens.json)");
+  tk->require_subcommand(1);
+  for (const char* action : {"list", "add-worker", "revoke", "disable-shared", "enable-shared"}) {
+    const std::string a = action;
+    auto* sub =
+        tk->add_subcommand(a, a == "list" ? "Worker tokens and whether each is enabled (no secrets)"
+                              : a == "add-worker"     ? "Make a token for one worker; prints it"
+                              : a == "revoke"         ? "Refuse a worker's token from now on"
+                              : a == "disable-shared" ? "Refuse the shared worker token"
+                                                      : "Accept the shared worker token again");
+    if (a == "add-worker" || a == "revoke")
+      sub->add_option("name", t->name, "Worker name")->required();
+    dispatch.on(sub, [t, a] {
+      t->action = a;
+      return run_tokens(*t);
+    });
+  }
 
   auto w = std::make_shared<WorkerCommandOptions>();
   auto* wk = app.add_subcommand("worker", "Pull tasks from a farm server and render them");

@@ -8,6 +8,7 @@
 #include "cli/farm_config.h"
 #include "cli/farm_setup.h"
 #include "cli/local_server.h"
+#include "common/sha256.h"
 #include "server/server.h"
 
 namespace vesper::cli {
@@ -24,6 +25,16 @@ int run_server(const ServerCommandOptions& o) {
   if (o.data_dir) c.data_dir = expand_user(*o.data_dir);
   if (o.host) c.host = *o.host;
   if (o.port) c.port = *o.port;
+  for (const std::string& sha : o.trusted_renderers) {
+    if (!is_sha256_hex(sha)) {
+      spdlog::error(
+          "--trust-renderer '{}': expected 64 lower-case hex digits (sha256sum of a "
+          "vesper binary)",
+          sha);
+      return 2;
+    }
+    c.trusted_renderers.push_back(sha);
+  }
 
   // Block the stop signals before any thread starts (threads inherit the
   // mask), then wait for one here: no work in a signal handler.

@@ -12,6 +12,8 @@
 
 namespace vesper {
 
+void describe_lease(const JobStore::Impl& store, Lease& lease);
+
 namespace {
 
 std::string new_lease_id() {
@@ -41,6 +43,15 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
       .bind(5, renderer)
       .run();
   lease.task = *store.leased_task(lease.lease_id);
+  describe_lease(store, lease);
+  return lease;
+}
+
+}  // namespace
+
+// What the worker of `lease.task` is to render: the job's scene, spp, this
+// task's budget, overrides and assets.
+void describe_lease(const JobStore::Impl& store, Lease& lease) {
   sql::Stmt job(store.db,
                 "SELECT scene, spp, noise_target, min_spp, time_limit, aovs, layer_variance, seed, "
                 "scale, task_timeout FROM jobs WHERE id = ?1");
@@ -60,10 +71,7 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
   o.scale = job.optional_f64(8);
   lease.task_timeout = job.optional_f64(9);
   lease.assets = store.assets(lease.task.job_id);
-  return lease;
 }
-
-}  // namespace
 
 JobStore::JobStore(const std::filesystem::path& file, StoreOptions options)
     : impl_(std::make_unique<Impl>(file, options)) {
@@ -170,6 +178,16 @@ std::optional<Lease> JobStore::lease(const std::string& worker, double now,
     break;
   }
   tx.commit();  // with no lease, still commits the requeued expired leases
+  return lease;
+}
+
+std::optional<Lease> JobStore::current_lease(const std::string& lease_id) const {
+  const auto task = impl_->leased_task(lease_id);
+  if (!task) return std::nullopt;
+  Lease lease;
+  lease.lease_id = lease_id;
+  lease.task = *task;
+  describe_lease(*impl_, lease);
   return lease;
 }
 

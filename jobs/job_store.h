@@ -52,6 +52,10 @@ class JobStore {
   // leased (`reused`, if given, counts them), and the next task is looked at.
   std::optional<Lease> lease(const std::string& worker, double now,
                              const std::string& renderer = "", int* reused = nullptr);
+  // The lease `lease_id` while it is current (expiry not filled in), as
+  // lease() granted it: what the server checks a result against. nullopt
+  // for a stale lease.
+  std::optional<Lease> current_lease(const std::string& lease_id) const;
   HeartbeatAnswer heartbeat(const std::string& lease_id, double now);
   // Both refuse (return false) a lease that is no longer current: expired,
   // re-leased, canceled. Committed results are never touched by stale calls.

@@ -3,6 +3,7 @@
 // server it needs. A group adds its endpoints to a HandlerTable; its .cpp
 // holds the handlers.
 #include <functional>
+#include <string>
 
 #include "server/http_exchange.h"
 
@@ -12,6 +13,7 @@ class BlobStore;
 class FrameMerger;
 class LeaseTracker;
 class LockedStore;
+class ResultExpectations;
 class ServerClock;
 class ServerCounters;
 class WorkerRegistry;
@@ -42,6 +44,11 @@ struct WorkerHandlerDeps {
   // Tasks were completed: a frame of several tasks may be ready to merge (a
   // reused output may have noise to read).
   std::function<void()> tasks_completed;
+  // Results are checked before they are committed (server/result_check.h);
+  // nullptr: taken as uploaded (ServerConfig::verify_results off).
+  ResultExpectations* expectations;
+  // Whether results of this renderer build may be reused by other jobs.
+  std::function<bool(const std::string&)> trusted_renderer;
 };
 void add_worker_handlers(HandlerTable& table, const WorkerHandlerDeps& deps);
 

@@ -84,13 +84,15 @@ std::string bearer(const httplib::Request& req) {
   return h.substr(prefix.size());
 }
 
-bool authorized(const httplib::Request& req, Role role, const Tokens& tokens) {
+bool authorized(const httplib::Request& req, Role role, TokenFile& token_file) {
   if (role == Role::None) return true;
   const std::string token = bearer(req);
   if (token.empty()) return false;
-  // Evaluate both comparisons regardless, in constant time.
-  const bool sub = constant_time_equal(token, tokens.submitter);
-  const bool wrk = constant_time_equal(token, tokens.worker);
+  // The file as it is now: a revoked token is refused without a restart.
+  const std::shared_ptr<const Tokens> tokens = token_file.current();
+  // Evaluate every comparison regardless, in constant time.
+  const bool sub = constant_time_equal(token, tokens->submitter);
+  const bool wrk = tokens->worker_allowed(token);
   switch (role) {
     case Role::Submitter:
       return sub;
@@ -131,11 +133,11 @@ std::string pattern_of(const protocol::Route& r) {
 }  // namespace
 
 struct HttpApi::Impl {
-  Impl(const ServerConfig& c, const Tokens& t, ServerCounters& n)
+  Impl(const ServerConfig& c, TokenFile& t, ServerCounters& n)
       : config(c), tokens(t), counters(n) {}
 
   const ServerConfig& config;
-  const Tokens& tokens;
+  TokenFile& tokens;
   ServerCounters& counters;
   httplib::Server http;
   std::thread thread;
@@ -147,9 +149,11 @@ struct HttpApi::Impl {
                                                                   httplib::Response& res) {
       if (!authorized(req, role, tokens)) {
         res.set_header("WWW-Authenticate", "Bearer");
-        send_error(res, 401,
-                   std::string("missing or wrong bearer token (this endpoint needs the ") +
-                       token_name(role) + " token from the server's tokens.json)");
+        send_error(
+            res, 401,
+            std::string("missing or wrong bearer token (this endpoint needs the ") +
+                token_name(role) +
+                " token from the server's tokens.json; a revoked or disabled token is refused)");
         return;
       }
       if (json_body && req.body.size() > config.max_json_bytes) {
@@ -246,7 +250,7 @@ struct HttpApi::Impl {
   }
 };
 
-HttpApi::HttpApi(const ServerConfig& config, const Tokens& tokens, ServerCounters& counters)
+HttpApi::HttpApi(const ServerConfig& config, TokenFile& tokens, ServerCounters& counters)
     : impl_(std::make_unique<Impl>(config, tokens, counters)) {
   impl_->configure();
   impl_->install_hooks();

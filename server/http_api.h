@@ -13,12 +13,12 @@
 namespace vesper {
 
 struct ServerConfig;
-struct Tokens;
+class TokenFile;
 class ServerCounters;
 
 class HttpApi {
  public:
-  HttpApi(const ServerConfig& config, const Tokens& tokens, ServerCounters& counters);
+  HttpApi(const ServerConfig& config, TokenFile& tokens, ServerCounters& counters);
   ~HttpApi();  // stops
   HttpApi(const HttpApi&) = delete;
   HttpApi& operator=(const HttpApi&) = delete;

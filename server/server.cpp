@@ -6,6 +6,9 @@
 #include <spdlog/spdlog.h>
 
 #include <mutex>
+#include <set>
+
+#include "common/sha256.h"
 
 #include "jobs/job_store.h"
 #include "server/blob_store.h"
@@ -16,6 +19,7 @@
 #include "server/lease_tracker.h"
 #include "server/locked_store.h"
 #include "server/metrics.h"
+#include "server/result_check.h"
 #include "server/server_clock.h"
 #include "server/tokens.h"
 #include "server/worker_registry.h"
@@ -38,12 +42,27 @@ std::unique_ptr<JobStore> open_store(const ServerConfig& c) {
                                     StoreOptions{c.lease_seconds, c.blocklist_threshold});
 }
 
+// The renderer builds whose results may be reused: the configured ones and,
+// unless told otherwise, this executable's own.
+std::set<std::string> trusted_renderers(const ServerConfig& c) {
+  std::set<std::string> out(c.trusted_renderers.begin(), c.trusted_renderers.end());
+  if (c.trust_own_build) {
+    if (const auto own = sha256_file("/proc/self/exe"))
+      out.insert(*own);
+    else
+      spdlog::warn("server: cannot hash /proc/self/exe: its own build is not trusted for reuse");
+  }
+  return out;
+}
+
 }  // namespace
 
 struct Server::Impl {
   ServerConfig config;
-  Tokens tokens;
+  TokenFile tokens;
   BlobStore blobs;
+  std::set<std::string> trusted;
+  ResultExpectations expectations;
   WorkerRegistry workers;
   LockedStore store;
   ServerClock clock;
@@ -57,8 +76,10 @@ struct Server::Impl {
 
   explicit Impl(ServerConfig c)
       : config(prepare(std::move(c))),
-        tokens(load_or_create_tokens(config.data_dir / "tokens.json")),
+        tokens(config.data_dir / "tokens.json"),
         blobs(config.data_dir / "blobs"),
+        trusted(trusted_renderers(config)),
+        expectations(blobs),
         workers(config.data_dir / "workers.json"),
         store(open_store(config), open_store(config)),
         clock(config.clock),
@@ -70,9 +91,11 @@ struct Server::Impl {
   HandlerTable handlers() {
     HandlerTable table;
     add_job_handlers(table, {store, blobs, leases, merger, clock});
-    add_worker_handlers(table,
-                        {store, blobs, workers, leases, counters, clock, config.lease_seconds,
-                         config.task_timeout, [this] { merger.wake(); }});
+    add_worker_handlers(
+        table,
+        {store, blobs, workers, leases, counters, clock, config.lease_seconds, config.task_timeout,
+         [this] { merger.wake(); }, config.verify_results ? &expectations : nullptr,
+         [this](const std::string& r) { return !r.empty() && trusted.count(r) > 0; }});
     add_frame_handlers(table, {store, blobs, merger});
     add_blob_handlers(table, blobs);
     add_ops_handlers(table, {store, workers, counters});
@@ -129,7 +152,7 @@ int Server::port() const { return impl_->bound_port; }
 std::string Server::url() const {
   return "http://" + impl_->config.host + ":" + std::to_string(impl_->bound_port);
 }
-std::string Server::submitter_token() const { return impl_->tokens.submitter; }
-std::string Server::worker_token() const { return impl_->tokens.worker; }
+std::string Server::submitter_token() const { return impl_->tokens.current()->submitter; }
+std::string Server::worker_token() const { return impl_->tokens.current()->worker; }
 
 }  // namespace vesper

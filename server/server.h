@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace vesper {
 
@@ -44,6 +45,19 @@ struct ServerConfig {
   std::filesystem::path vesper_binary;
   // A failed merge is retried on request only after this many seconds.
   double merge_retry_seconds = 60;
+  // Check each result before committing it: a readable EXR (whole frame) or
+  // partial (sample range) whose metadata names the task's scene hash,
+  // frame, sample range and seed; otherwise 400 and the attempt fails
+  // (server/result_check.h). Off only for tests and benchmarks that upload
+  // fake bytes on purpose.
+  bool verify_results = true;
+  // Renderer builds (sha256 of the worker's renderer executable) whose
+  // results later identical jobs may reuse. A worker announcing another
+  // build renders as usual, but its results are never reused.
+  std::vector<std::string> trusted_renderers;
+  // Trust this server's own executable's build too (the `vesper` binary that
+  // workers of the same installation run).
+  bool trust_own_build = true;
 };
 
 class Server {

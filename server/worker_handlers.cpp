@@ -16,6 +16,7 @@
 #include "server/locked_store.h"
 #include "server/metrics.h"
 #include "server/requests.h"
+#include "server/result_check.h"
 #include "server/server_clock.h"
 #include "server/worker_registry.h"
 
@@ -63,9 +64,12 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
                    std::string("/") + f::kWorkerId);
   int reused = 0;
   // The renderer's identity (sha256 of its executable): identical tasks done
-  // by the same renderer are not rendered again.
+  // by the same renderer are not rendered again — only for builds the
+  // operator registered: one worker's word is no reason to hand its results
+  // to other jobs. An unregistered build renders without reuse, either way.
+  const std::string renderer = d.trusted_renderer(r.renderer) ? r.renderer : std::string();
   const std::optional<Lease> l =
-      d.store.with([&](JobStore& s) { return s.lease(r.worker_id, t, r.renderer, &reused); });
+      d.store.with([&](JobStore& s) { return s.lease(r.worker_id, t, renderer, &reused); });
   if (reused > 0) {
     d.counters.tasks_reused(reused);
     d.tasks_completed();  // reused tasks may have finished frames of several tasks
@@ -110,6 +114,28 @@ ApiResponse heartbeat(const WorkerHandlerDeps& d, const ApiRequest& req) {
                                                             : protocol::HeartbeatAnswer::Stop});
 }
 
+// Refuses (400, the attempt failed: the worker's fault) a result that is not
+// a readable render of the lease's task (server/result_check.h).
+void verify_result(const WorkerHandlerDeps& d, const protocol::CompleteRequest& r,
+                   const std::filesystem::path& file) {
+  const auto lease = d.store.with([&](JobStore& s) { return s.current_lease(r.lease_id); });
+  if (!lease) stale(r.lease_id);
+  std::string problem;
+  try {
+    problem = check_result(file, d.expectations->of(*lease));
+  } catch (const std::exception& e) {
+    problem = std::string("it cannot be checked: ") + e.what();
+  }
+  if (problem.empty()) return;
+  const std::string message =
+      "result " + r.result + " of task " + std::to_string(lease->task.id) + " refused: " + problem;
+  spdlog::warn("worker '{}': {}", lease->task.worker, message);
+  const double t = d.clock.now();
+  d.store.with([&](JobStore& s) { return s.fail(r.lease_id, "server: " + message, t); });
+  d.leases.note(r.lease_id, t, true);
+  throw ApiError(400, message, std::string("/") + f::kResult);
+}
+
 ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
   const auto r = read_complete_request(req.body);
   const auto result_file = d.blobs.file(r.result);
@@ -118,6 +144,7 @@ ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
                    "no blob " + r.result + ": upload the result first (PUT " +
                        protocol::api(protocol::paths::kBlob) + ")",
                    std::string("/") + f::kResult);
+  if (d.expectations) verify_result(d, r, *result_file);
   // Read before the completion, so a one-task frame is never seen done
   // without its noise (a partial is not an EXR: read as saying nothing).
   const FrameNoise noise = read_frame_noise(*result_file);

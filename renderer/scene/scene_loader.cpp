@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/json_parse.h"
+#include "common/scene_hash.h"
 #include "common/scene_reference.h"
 #include "renderer/scene/aov_list.h"
 #include "renderer/scene/scene_parse.h"
@@ -19,27 +20,6 @@ constexpr std::string_view kFormat = "vesper-scene/1";
 constexpr std::string_view kCameraTypes[] = {"perspective"};
 constexpr std::string_view kFilters[] = {"box", "gaussian"};
 constexpr std::string_view kMaterialTypes[] = {"diffuse", "conductor", "dielectric", "principled"};
-
-// FNV-1a 64: the hash only has to tell scenes apart for caching and image
-// metadata, not resist an adversary, so no cryptographic hash is needed here
-// (the farm addresses blobs by sha256 itself).
-struct Fnv1a64 {
-  uint64_t h = 0xcbf29ce484222325ull;
-  void add(const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
-  }
-  void add_sized(const std::string& s) {  // length-prefixed so concatenations stay distinct
-    const uint64_t n = s.size();
-    add(&n, sizeof n);
-    add(s.data(), s.size());
-  }
-  std::string hex() const {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
-  }
-};
 
 CameraDesc parse_camera(JsonReader node) {
   node.expect_object();
@@ -181,12 +161,12 @@ void parse_lights(const JsonReader& lights, SceneParseContext& ctx, SceneDescrip
 }
 
 // Canonical text (sorted keys, no whitespace) so that reformatting a scene
-// does not change its hash, then the bytes of every referenced file.
+// does not change its hash, then the bytes of every referenced file, in the
+// order common/scene_hash.h states (the farm server hashes the same way).
 std::string content_hash(const nlohmann::json& doc, const SceneParseContext& ctx) {
-  Fnv1a64 hash;
-  hash.add_sized(doc.dump());
+  SceneHash hash(doc);
   for (const std::filesystem::path& p : ctx.referenced_files) {
-    hash.add_sized(read_text_file(p, "a file the scene references"));
+    hash.add_file(read_text_file(p, "a file the scene references"));
   }
   return hash.hex();
 }

@@ -233,14 +233,16 @@ TEST_F(ServerTest, DryRunValidatesAndCreatesNothing) {
 // Leases carry the worker's renderer id (sha256 of its executable); an
 // identical task already done by that renderer is completed, not leased.
 TEST_F(ServerTest, LeaseWithARendererIdReusesIdenticalResults) {
-  start();
+  const std::string renderer(64, 'a');
+  ServerConfig c = config();
+  c.trusted_renderers = {renderer};  // registered by the operator
+  start(c);
   const std::string w = register_worker("box-1");
   auto bad = post("/lease", {{"worker_id", w}, {"renderer", "../x"}}, wrk());
   ASSERT_TRUE(bad);
   EXPECT_EQ(bad->status, 400);
   EXPECT_EQ(json::parse(bad->body).at("path"), "/renderer");
 
-  const std::string renderer(64, 'a');
   const int64_t first = submit(1);
   const json l = post_ok("/lease", {{"worker_id", w}, {"renderer", renderer}}, wrk());
   const std::string result = put_blob("the frame");

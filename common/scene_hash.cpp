@@ -1,0 +1,49 @@
+#include "common/scene_hash.h"
+
+#include <cstdio>
+
+namespace vesper {
+
+SceneHash::SceneHash(const nlohmann::json& doc) { add_sized(doc.dump()); }
+
+void SceneHash::add_file(const std::string& bytes) { add_sized(bytes); }
+
+void SceneHash::add_sized(const std::string& s) {
+  // Length-prefixed so that concatenations stay distinct.
+  const uint64_t n = s.size();
+  auto add = [this](const void* data, size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) h_ = (h_ ^ p[i]) * 0x100000001b3ull;
+  };
+  add(&n, sizeof n);
+  add(s.data(), s.size());
+}
+
+std::string SceneHash::hex() const {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
+  return buf;
+}
+
+std::vector<std::string> hashed_file_references(const nlohmann::json& doc) {
+  std::vector<std::string> out;
+  auto file_of = [&out](const nlohmann::json& node) {
+    if (!node.is_object()) return;
+    const auto it = node.find("file");
+    if (it != node.end() && it->is_string()) out.push_back(it->get<std::string>());
+  };
+  if (!doc.is_object()) return out;
+  // The loader's order: shapes, lights, then media (nlohmann keeps object
+  // keys sorted, so iterating "media" is name order, as the loader does).
+  for (const char* list : {"shapes", "lights"}) {
+    const auto it = doc.find(list);
+    if (it != doc.end() && it->is_array())
+      for (const auto& node : *it) file_of(node);
+  }
+  const auto media = doc.find("media");
+  if (media != doc.end() && media->is_object())
+    for (const auto& [name, node] : media->items()) file_of(node);
+  return out;
+}
+
+}  // namespace vesper

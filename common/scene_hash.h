@@ -1,0 +1,37 @@
+#pragma once
+// A scene's content hash (`vesper:scene_hash` in every image the renderer
+// writes): FNV-1a 64 of the scene's canonical JSON text (sorted keys, no
+// whitespace) and then the bytes of every file it references, each
+// length-prefixed. The renderer computes it while it loads a scene; the farm
+// server computes it from a job's scene blob and assets to check that a
+// worker's result is of the task's scene. One definition, so both agree.
+//
+// FNV, not a cryptographic hash: the hash tells scenes apart for caching and
+// metadata; it does not resist an adversary (blobs are addressed by sha256).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace vesper {
+
+class SceneHash {
+ public:
+  explicit SceneHash(const nlohmann::json& doc);  // starts with the canonical text
+  void add_file(const std::string& bytes);        // the next referenced file
+  std::string hex() const;                        // 16 lower-case hex digits
+
+ private:
+  void add_sized(const std::string& s);
+  uint64_t h_ = 0xcbf29ce484222325ull;
+};
+
+// The `file` values of a scene document in the order the scene loader
+// hashes them: each shape's (mesh files, in array order), each light's
+// (environment images, in array order), then each medium's (VDB files, in
+// name order). Values that are not strings are skipped (the loader refuses
+// such a scene anyway).
+std::vector<std::string> hashed_file_references(const nlohmann::json& doc);
+
+}  // namespace vesper
