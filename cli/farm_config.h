@@ -16,7 +16,10 @@ struct FarmServerSettings {
   double lease_seconds = 60;
   int blocklist_threshold = 3;
   int max_blob_mib = 64;
-  int threads = 16;
+  int threads = 16;  // requests handled at once
+  int max_connections = 1024;
+  double header_timeout = 10;   // seconds for a whole request head
+  double idle_timeout = 5;      // seconds a kept-alive connection waits for its next request
   double task_timeout = 86400;  // the farm default for jobs without one; 0 = none
   // Renderer builds (sha256) whose results later identical jobs may reuse,
   // besides the server's own build.

@@ -16,6 +16,9 @@ ServerConfig server_config(const FarmSettings& s) {
   c.blocklist_threshold = s.server.blocklist_threshold;
   c.max_blob_bytes = std::size_t(s.server.max_blob_mib) << 20;
   c.threads = s.server.threads;
+  c.max_connections = s.server.max_connections;
+  c.header_timeout = s.server.header_timeout;
+  c.idle_timeout = s.server.idle_timeout;
   c.task_timeout = s.server.task_timeout;
   c.trusted_renderers = s.server.trusted_renderers;
   return c;

@@ -1,10 +1,11 @@
 #pragma once
-// The HTTP layer: routes, auth, size limits, JSON errors, sockets. Routes
-// come from protocol::kRoutes, each served by the handler of its endpoint;
-// a route's role decides which bearer token it needs (401 otherwise), POST
-// bodies above max_json_bytes are 413, and an ApiError thrown by a handler
-// becomes {"error", "path"} with its status. This file's .cpp is the only one
-// that includes <httplib.h>.
+// The HTTP API: routes come from protocol::kRoutes, each served by the
+// handler of its endpoint. From the request head alone, before any body
+// byte is read: no route → 404, the route's bearer token missing or wrong →
+// 401, a POST/PUT without Content-Length → 411, a body over its limit
+// (max_json_bytes for POST, max_blob_bytes for PUT) → 413. An ApiError thrown
+// by a handler becomes {"error", "path"} with its status. Connections,
+// deadlines and the bound on concurrent requests are http_connections.*.
 #include <memory>
 #include <string>
 

@@ -1,9 +1,9 @@
 #pragma once
-// What a handler sees of an HTTP exchange, without cpp-httplib: the request's
+// What a handler sees of an HTTP exchange, without the wire: the request's
 // body, path parameters and query; the response's status, body and headers,
-// or a file streamed as its body. http_api.cpp (the only file that includes
-// <httplib.h>) converts, and turns an ApiError thrown by a handler into the
-// JSON error answer.
+// or a file streamed as its body. http_api.cpp routes to the handlers and
+// turns an ApiError thrown by one into the JSON error answer;
+// http_connections.cpp writes the response.
 #include <cstdint>
 #include <filesystem>
 #include <functional>

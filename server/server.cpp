@@ -34,6 +34,13 @@ ServerConfig prepare(ServerConfig c) {
   make_data_dir_private(c.data_dir);
   if (c.lease_seconds <= 0) throw std::invalid_argument("server: lease_seconds must be positive");
   if (c.threads < 1) c.threads = 1;
+  if (c.max_connections < 1)
+    throw std::invalid_argument("server: max_connections must be positive");
+  if (c.header_timeout <= 0 || c.idle_timeout <= 0 || c.io_timeout <= 0)
+    throw std::invalid_argument(
+        "server: header_timeout, idle_timeout and io_timeout must be positive");
+  if (c.max_header_bytes < 1024)
+    throw std::invalid_argument("server: max_header_bytes must be at least 1024");
   return c;
 }
 

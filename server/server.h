@@ -6,8 +6,8 @@
 // Data dir layout: tokens.json (0600), jobs.sqlite (+WAL), workers.json,
 // blobs/ab/cdef... (+ blobs/tmp/), merge-tmp/ (merges in flight).
 //
-// This header does not include cpp-httplib; http_api.cpp is the only file that
-// does.
+// The HTTP layer is http_api.* over http_connections.* (server/README.md,
+// "Connections").
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -29,7 +29,20 @@ struct ServerConfig {
   int blocklist_threshold = 3;
   std::size_t max_blob_bytes = std::size_t(64) << 20;  // PUT /blobs bodies; 413 beyond
   std::size_t max_json_bytes = std::size_t(1) << 20;   // JSON bodies; 413 beyond
-  int threads = 16;  // HTTP worker threads (each keep-alive connection holds one while open)
+  // Requests handled at once (body read + handler); more wait for a slot.
+  // Connections are not bounded by it (see max_connections): an open
+  // connection only holds a sleeping thread of the connection layer.
+  int threads = 16;
+  // Open connections; one beyond is answered 503 and closed at once.
+  int max_connections = 1024;
+  // Seconds for a whole request head (from accept, or from its first byte on
+  // a kept-alive connection): 408 and closed beyond. Bigger heads: 431.
+  double header_timeout = 10;
+  std::size_t max_header_bytes = std::size_t(64) << 10;
+  // Seconds a kept-alive connection may wait idle for its next request.
+  double idle_timeout = 5;
+  // Seconds a body read or response write may go without progress.
+  double io_timeout = 30;
   // Seconds for the job store's `now` (lease expiry). Empty: the wall clock
   // (seconds since the Unix epoch) clamped so it never goes backwards within
   // the process. A wall clock rather than a boot-relative one, because lease
