@@ -52,7 +52,9 @@ CameraDesc parse_camera(JsonReader node) {
   cam.to = read_vec3(node, "to");
   cam.up = read_vec3(node, "up");
   cam.fov_degrees = node.number("fov", Range::open(0, 180));
-  cam.aperture = node.number("aperture", 0.0, Range::non_negative());
+  // Lengths within the world limit (render_space.h): an aperture of 1.8e308
+  // made the lens radius, and every ray, infinite.
+  cam.aperture = node.number("aperture", 0.0, Range::closed(0, kMaxWorldCoordinate));
   const Vec3d forward = cam.to - cam.from;
   if (!(max_abs_component(forward) > 0)) {
     node.fail_key("to", "expected 'to' to differ from 'from'");
@@ -69,7 +71,8 @@ CameraDesc parse_camera(JsonReader node) {
   if (!(up_scale > 0) || length(cross(f, normalize(cam.up / up_scale))) < 1e-6) {
     node.fail_key("up", "expected an up vector not parallel to the view direction (to - from)");
   }
-  cam.focus_distance = node.number("focus_distance", length(forward), Range::positive());
+  cam.focus_distance =
+      node.number("focus_distance", length(forward), Range::left_open(0, kMaxWorldCoordinate));
   return cam;
 }
 

@@ -72,6 +72,19 @@ TEST(SceneFuzzFindings, CameraDistanceBeyondTheDoubleRangeIsRefused) {
   }
 }
 
+// Found by this driver's own run: an aperture of 1.8e308 made the lens
+// radius infinite (a focus distance as large did the same).
+TEST(SceneFuzzFindings, CameraLensBeyondTheWorldLimitIsRefused) {
+  test::TempDir dir;
+  for (const char* key : {"aperture", "focus_distance"}) {
+    json doc = base_scene();
+    doc["camera"]["aperture"] = 0.1;
+    doc["camera"][key] = 1.7976931348623157e308;
+    const SceneError e = error_of(doc, dir.path());
+    EXPECT_EQ(e.json_path(), std::string("/camera/") + key) << e.what();
+  }
+}
+
 // A scale of 1e-310 is not 0, but the transform's inverse is infinite.
 TEST(SceneFuzzFindings, UninvertibleTransformIsRefused) {
   test::TempDir dir;
