@@ -95,7 +95,9 @@ TEST(SceneFuzzFindings, UninvertibleTransformIsRefused) {
         "transform": {"scale": )" +
                                 std::string(scale) + R"(}}])");
     const SceneError e = error_of(doc, dir.path());
-    EXPECT_EQ(e.json_path(), "/shapes/0/transform") << scale << ": " << e.what();
+    // At ".../scale" when an earlier test in this process left the thread's
+    // denormals-are-zero mode on (Embree renders set it): then 1e-310 == 0.
+    EXPECT_EQ(e.json_path().rfind("/shapes/0/transform", 0), 0u) << scale << ": " << e.what();
   }
 }
 
