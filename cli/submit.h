@@ -8,27 +8,11 @@
 #include "cli/commands.h"
 #include "cli/farm_client.h"
 #include "cli/farm_config.h"
+#include "cli/job_file.h"
 #include "jobs/render_budget.h"
 #include "jobs/render_overrides.h"
 
 namespace vesper::cli {
-
-struct JobRequest {
-  std::filesystem::path scene;
-  std::string name;
-  std::string frames;
-  int spp = 0;  // 0 = the scene's render.spp
-  int samples_per_task = 0;
-  int priority = 50;
-  int max_attempts = 3;
-  // Noise target, min/max spp, time limit per frame; each unset = the
-  // scene's render.* (docs/farm.md, "Noise targets and time limits").
-  BudgetRequest sampling;
-  // AOVs, per-layer variance, seed, film scale of every render (docs/farm.md,
-  // "Render overrides"); unset = as the scene says.
-  RenderOverrides overrides;
-  std::optional<double> task_timeout;  // seconds per task render; unset = the server's default
-};
 
 // A job request that does not fit together (min spp above max spp, a min spp
 // without a noise target, ...): the message names the flag and the key.
@@ -39,10 +23,6 @@ class JobRequestError : public std::runtime_error {
 
 // A job request from the settings' [job] defaults and a scene file.
 JobRequest job_request_defaults(const FarmSettings& settings, const std::filesystem::path& scene);
-
-// Reads a job file (format "vesper-job/1"; docs/farm.md) over `defaults`.
-// Throws JsonError "<file>: <json path>: <what was expected>".
-JobRequest read_job_file(const std::filesystem::path& file, JobRequest defaults);
 
 // --noise-target, --min-spp, --max-spp, --time-limit over `sampling`.
 void apply_sampling_flags(BudgetRequest& sampling, const SamplingFlags& flags);

@@ -22,23 +22,6 @@
 namespace vesper::cli {
 namespace {
 
-std::string default_job_name(const std::filesystem::path& scene) {
-  // scenes/night-room/scene.json -> night-room
-  if (scene.stem() == "scene" && scene.has_parent_path())
-    return std::filesystem::absolute(scene).parent_path().filename().string();
-  return scene.stem().string();
-}
-
-constexpr std::string_view kJobFormat = "vesper-job/1";
-
-// "frames": a range string ("1-100x5") or a single frame number.
-std::string frame_range_text(const JsonReader& node) {
-  if (node.json().is_number_integer()) return std::to_string(node.json().get<long long>());
-  if (!node.json().is_string())
-    node.fail("expected a frame range string like \"1-100x5\", got " + describe_json(node.json()));
-  return node.as_string();
-}
-
 // A temp file for the packed scene, removed when the upload is done.
 struct TempFile {
   std::filesystem::path path;
@@ -66,37 +49,6 @@ JobRequest job_request_defaults(const FarmSettings& s, const std::filesystem::pa
   if (s.job.max_spp > 0) b.max_spp = s.job.max_spp;
   if (s.job.time_limit > 0) b.budget.time_limit = s.job.time_limit;
   if (s.job.task_timeout > 0) r.task_timeout = s.job.task_timeout;
-  return r;
-}
-
-JobRequest read_job_file(const std::filesystem::path& file, JobRequest r) {
-  const nlohmann::json doc = read_json_file(file, "the job file");
-  JsonReader root(doc, file.string(), "");
-  root.expect_object();
-  root.child("format").expect_string(kJobFormat);
-  namespace f = protocol::field;
-  root.allow_keys({"format", f::kScene, f::kName, f::kFrames, f::kSpp, f::kSamplesPerTask,
-                   f::kPriority, f::kMaxAttempts, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
-                   f::kTimeLimit, f::kAovs, f::kLayerVariance, f::kSeed, f::kScale,
-                   f::kTaskTimeout});
-  const std::filesystem::path scene = root.string("scene");
-  r.scene = scene.is_relative() ? file.parent_path() / scene : scene;
-  r.name = root.has("name") ? root.string("name") : default_job_name(r.scene);
-  if (const auto frames = root.optional_child("frames")) r.frames = frame_range_text(*frames);
-  r.spp = int(root.integer("spp", r.spp, 1, 1 << 20));
-  r.samples_per_task = int(root.integer("samples_per_task", r.samples_per_task, 0, 1 << 20));
-  r.priority = int(root.integer("priority", r.priority, -1000000, 1000000));
-  r.max_attempts = int(root.integer("max_attempts", r.max_attempts, 1, 100));
-  // Each key alone here; together with the flags and the scene in settle_job_request.
-  const BudgetRequest keys = read_budget_request(root);
-  BudgetRequest& b = r.sampling;
-  if (keys.budget.noise_target) b.budget.noise_target = keys.budget.noise_target;
-  if (keys.budget.min_spp) b.budget.min_spp = keys.budget.min_spp;
-  if (keys.max_spp) b.max_spp = keys.max_spp;
-  if (keys.budget.time_limit) b.budget.time_limit = keys.budget.time_limit;
-  r.overrides = read_render_overrides(root);
-  if (const auto t = root.optional_child(f::kTaskTimeout))
-    r.task_timeout = t->as_number(Range::left_open(0, 30 * 86400));
   return r;
 }
 
@@ -189,9 +141,10 @@ int run_submit(const SubmitCommandOptions& o) {
   try {
     const FarmSettings settings = load_farm_settings(o.farm.config);
     JobRequest r = job_request_defaults(settings, o.input);
-    std::ifstream probe(o.input);
-    const auto doc = nlohmann::json::parse(probe, nullptr, false);
-    if (doc.is_object() && doc.value("format", "") == kJobFormat) r = read_job_file(o.input, r);
+    std::string text;
+    if (std::ifstream in(o.input, std::ios::binary); in)
+      text.assign(std::istreambuf_iterator<char>(in), {});
+    if (is_job_file_text(text)) r = parse_job_file_text(text, o.input, r);
     if (o.frames) r.frames = *o.frames;
     if (o.name) r.name = *o.name;
     if (o.spp) r.spp = *o.spp;

@@ -307,7 +307,7 @@ CompRecipe parse(const nlohmann::json& doc, const fs::path& base_dir, const std:
 
 // The reader throws JsonError; every compositor error is a CompError (same text).
 template <typename Parse>
-CompRecipe as_comp_error(Parse parse) {
+auto as_comp_error(Parse parse) -> decltype(parse()) {
   try {
     return parse();
   } catch (const JsonError& e) {
@@ -342,19 +342,25 @@ CompRecipe parse_recipe(const nlohmann::json& doc, const fs::path& base_dir,
   return as_comp_error([&] { return parse(doc, base_dir, label, {}); });
 }
 
-CompRecipe load_recipe(const fs::path& file) {
+CompRecipe parse_recipe_text(const std::string& text, const fs::path& base_dir,
+                             const std::string& label) {
   return as_comp_error([&] {
-    const std::string text = read_text_file(file, "the recipe file");
-    const nlohmann::json doc = parse_json(text, file.string());
+    const nlohmann::json doc = parse_json(text, label);
     // The order of "inputs" decides which is the first (the default of a layer).
+    // parse_json accepted the text, so this parse is within the depth limit too.
     const auto ordered = nlohmann::ordered_json::parse(text);
     std::vector<std::string> order;
     if (ordered.is_object() && ordered.contains("inputs") && ordered["inputs"].is_object())
       for (auto it = ordered["inputs"].begin(); it != ordered["inputs"].end(); ++it)
         order.push_back(it.key());
-    const fs::path base = file.has_parent_path() ? file.parent_path() : fs::path(".");
-    return parse(doc, base, file.string(), order);
+    return parse(doc, base_dir, label, order);
   });
+}
+
+CompRecipe load_recipe(const fs::path& file) {
+  const std::string text = as_comp_error([&] { return read_text_file(file, "the recipe file"); });
+  const fs::path base = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  return parse_recipe_text(text, base, file.string());
 }
 
 }  // namespace vesper

@@ -53,6 +53,10 @@ struct CompRecipe {
 
 // Reads and validates a recipe; relative paths resolve against the file's folder.
 CompRecipe load_recipe(const std::filesystem::path& file);
+// The same from the recipe's text (what load_recipe reads): relative paths
+// resolve against `base_dir`, messages name `label`.
+CompRecipe parse_recipe_text(const std::string& text, const std::filesystem::path& base_dir,
+                             const std::string& label);
 // The same from a parsed document: relative paths resolve against `base_dir`,
 // messages name `label`.
 CompRecipe parse_recipe(const nlohmann::json& doc, const std::filesystem::path& base_dir,

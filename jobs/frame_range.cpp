@@ -48,7 +48,8 @@ std::vector<int> parse_frame_range(const std::string& text) {
       if (step <= 0)
         throw FrameRangeError("'" + piece + "': step must be positive, got " +
                               std::to_string(step));
-      if ((long long)(last - first) / step + frames.size() > kMaxFrames)
+      // In 64 bits: `last - first` overflows an int for ranges of 2^31 frames or more.
+      if (((long long)last - first) / step + 1 + (long long)frames.size() > kMaxFrames)
         throw FrameRangeError("'" + piece + "': more than " + std::to_string(kMaxFrames) +
                               " frames");
       for (long long f = first; f <= last; f += step) frames.push_back(int(f));

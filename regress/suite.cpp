@@ -134,12 +134,22 @@ Suite parse_suite(const nlohmann::json& doc, const std::filesystem::path& file) 
 
 }  // namespace
 
-Suite load_suite(const std::filesystem::path& path) {
+Suite parse_suite_text(const std::string& text, const std::filesystem::path& path) {
   try {
-    return parse_suite(read_json_file(path, "the suite file"), path);
+    return parse_suite(parse_json(text, path.string()), path);
   } catch (const JsonError& e) {
     throw SuiteError(e.file(), e.json_path(), e.message());
   }
+}
+
+Suite load_suite(const std::filesystem::path& path) {
+  std::string text;
+  try {
+    text = read_text_file(path, "the suite file");
+  } catch (const JsonError& e) {
+    throw SuiteError(e.file(), e.json_path(), e.message());
+  }
+  return parse_suite_text(text, path);
 }
 
 }  // namespace vesper::regress

@@ -49,5 +49,8 @@ class SuiteError : public JsonError {
 // names, scene files that do not exist); a SuiteError names the file and the
 // JSON path ("suite.json: /scenes/2/spp: expected an integer in [1, ...]").
 Suite load_suite(const std::filesystem::path& path);
+// The same from the suite's text (what load_suite reads); `path` names the
+// file in messages and relative scene paths resolve against its folder.
+Suite parse_suite_text(const std::string& text, const std::filesystem::path& path);
 
 }  // namespace vesper::regress

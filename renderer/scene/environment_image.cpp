@@ -57,6 +57,12 @@ EnvironmentImage load_environment_image(const std::filesystem::path& path,
   if (width <= 0 || height <= 0 || nch <= 0) {
     fail("environment image " + where + " is empty");
   }
+  // OpenImageIO also opens volumes (an OpenVDB file is width x height x
+  // depth voxels): read as one image, they overran the buffer below.
+  if (spec.depth > 1) {
+    fail("environment image " + where + " is a volume (" + std::to_string(spec.depth) +
+         " slices deep), not a 2D image");
+  }
   if (uint64_t(width) * uint64_t(height) > uint64_t(std::numeric_limits<int32_t>::max())) {
     fail("environment image " + where + " is too large");
   }

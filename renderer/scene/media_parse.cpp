@@ -61,6 +61,18 @@ std::shared_ptr<const DensityGrid> load_grid(const JsonReader& node,
   }
 }
 
+// Rendering maps render space to the grid's index space in float: the
+// grid's own transform combined with `transform` must stay far inside the
+// float range (a translate of 1e308 overflowed it), and be invertible.
+void check_grid_transform(JsonReader& node, const Transform& transform, const DensityGrid& grid) {
+  constexpr double kLimit = 1e30;
+  if (!transform_fits(transform * grid.index_to_world(), kLimit))
+    node.fail_key(node.has("transform") ? "transform" : "file",
+                  "expected the grid '" + grid.name() +
+                      "' with its transform to map voxels to world positions within 1e30 "
+                      "(and back): its matrix or inverse is larger or not finite");
+}
+
 VdbMediumDesc parse_vdb(JsonReader& node, SceneParseContext& ctx) {
   node.allow_keys({"type", "file", "grid", "density_scale", "sigma_a", "sigma_s", "g", "transform",
                    "emission_grid", "emission_scale", "emission_color"});
@@ -96,6 +108,8 @@ VdbMediumDesc parse_vdb(JsonReader& node, SceneParseContext& ctx) {
   m.density = load_grid(node, path, m.grid, "grid");
   if (!m.emission_grid.empty())
     m.emission = load_grid(node, path, m.emission_grid, "emission_grid");
+  check_grid_transform(node, m.transform, *m.density);
+  if (m.emission) check_grid_transform(node, m.transform, *m.emission);
   ctx.referenced_files.push_back(path);
   return m;
 }

@@ -65,7 +65,23 @@ Bounds scene_bounds(const SceneDescription& d) {
   return b;
 }
 
+template <typename Variant>
+double extent_of_variant(const Variant& v) {
+  Bounds b;
+  std::visit([&](const auto& desc) { include(b, desc); }, v);
+  if (b.empty()) return 0;
+  double e = 0;
+  for (int i = 0; i < 3; ++i)
+    for (const double c : {b.lo[i], b.hi[i]})
+      e = std::isnan(c) ? INFINITY : std::max(e, std::abs(c));
+  return e;
+}
+
 }  // namespace
+
+double extent_of(const ShapeDesc& shape) { return extent_of_variant(shape.geometry); }
+double extent_of(const LightDesc& light) { return extent_of_variant(light.light); }
+double extent_of(const MediumDesc& medium) { return extent_of_variant(medium.medium); }
 
 RenderSpace make_render_space(const SceneDescription& desc) {
   RenderSpace space;

@@ -19,6 +19,18 @@ struct RenderSpace {
   float intensity_scale() const { return float(inv_scale * inv_scale); }
 };
 
+// The farthest from the world origin, on any axis, that a shape, light or
+// bounded medium may reach: a million times beyond any real scene, and far
+// enough inside the double range that the scene's radius and the render-space
+// scale stay finite (a mesh scaled by 1.8e308 made them infinite, and every
+// position in render space with them).
+inline constexpr double kMaxWorldCoordinate = 1e30;
+// The largest |coordinate| of the world-space extent of a shape, light or
+// medium: 0 when it has none (a sun, an unbounded medium), infinity for NaN.
+double extent_of(const ShapeDesc& shape);
+double extent_of(const LightDesc& light);
+double extent_of(const MediumDesc& medium);
+
 // The render space of a scene: camera at the origin, everything with a
 // position (shapes, lights, bounded media) within unit distance.
 RenderSpace make_render_space(const SceneDescription& desc);

@@ -3,6 +3,7 @@
 #include "renderer/scene/scene_loader.h"
 
 #include <climits>
+#include <cmath>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 #include "common/scene_hash.h"
 #include "common/scene_reference.h"
 #include "renderer/scene/aov_list.h"
+#include "renderer/scene/render_space.h"
 #include "renderer/scene/scene_parse.h"
 
 namespace vesper {
@@ -30,17 +32,27 @@ CameraDesc parse_camera(JsonReader node) {
   cam.to = read_vec3(node, "to");
   cam.up = read_vec3(node, "up");
   cam.fov_degrees = node.number("fov", Range::open(0, 180));
-  cam.aperture = node.number("aperture", 0.0, Range::non_negative());
+  // Lengths within the world limit (render_space.h): an aperture of 1.8e308
+  // made the lens radius, and every ray, infinite.
+  cam.aperture = node.number("aperture", 0.0, Range::closed(0, kMaxWorldCoordinate));
   const Vec3d forward = cam.to - cam.from;
   if (!(max_abs_component(forward) > 0)) {
     node.fail_key("to", "expected 'to' to differ from 'from'");
+  }
+  // The camera's frame is built from normalize(to - from): a distance beyond
+  // the double range (from 1e308, to -1e308) made every camera ray NaN.
+  if (!std::isfinite(length(forward))) {
+    node.fail_key("to",
+                  "expected 'to' at a distance from 'from' within the double range, got an "
+                  "infinite distance");
   }
   const Vec3d f = normalize(forward / max_abs_component(forward));
   const double up_scale = max_abs_component(cam.up);
   if (!(up_scale > 0) || length(cross(f, normalize(cam.up / up_scale))) < 1e-6) {
     node.fail_key("up", "expected an up vector not parallel to the view direction (to - from)");
   }
-  cam.focus_distance = node.number("focus_distance", length(forward), Range::positive());
+  cam.focus_distance =
+      node.number("focus_distance", length(forward), Range::left_open(0, kMaxWorldCoordinate));
   return cam;
 }
 
@@ -142,6 +154,16 @@ void check_light_group(JsonReader light, const std::string& group) {
   }
 }
 
+// Shapes, lights and bounded media stay within kMaxWorldCoordinate, after
+// their transforms (render_space.h says why).
+void check_extent(const JsonReader& node, double extent) {
+  if (!(extent <= kMaxWorldCoordinate))
+    node.fail(
+        "expected it within 1e30 units of the origin on every axis (after its transform), "
+        "got coordinates up to " +
+        (std::isfinite(extent) ? describe_json(extent) : std::string("infinity")));
+}
+
 void parse_lights(const JsonReader& lights, SceneParseContext& ctx, SceneDescription& scene) {
   lights.expect_array();
   std::optional<size_t> environment;
@@ -156,6 +178,7 @@ void parse_lights(const JsonReader& lights, SceneParseContext& ctx, SceneDescrip
       environment = i;
     }
     scene.lights.push_back(parse_light(lights.element(i), ctx));
+    check_extent(lights.element(i), extent_of(scene.lights.back()));
     check_light_group(lights.element(i), scene.lights.back().group);
   }
 }
@@ -196,6 +219,7 @@ SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem
   const JsonReader shapes = root.array("shapes");
   for (size_t i = 0; i < shapes.size(); ++i) {
     scene.shapes.push_back(parse_shape(shapes.element(i), ctx));
+    check_extent(shapes.element(i), extent_of(scene.shapes.back()));
   }
   if (const auto lights = root.optional_child("lights")) parse_lights(*lights, ctx, scene);
 
@@ -204,8 +228,9 @@ SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem
   if (const auto media = root.optional_child("media")) {
     media->expect_object();
     for (const auto& [name, value] : media->json().items()) {
-      scene.media.push_back(
-          parse_medium(JsonReader(value, ctx.file, media->key_path(name)), name, ctx));
+      const JsonReader medium(value, ctx.file, media->key_path(name));
+      scene.media.push_back(parse_medium(medium, name, ctx));
+      check_extent(medium, extent_of(scene.media.back()));
     }
   }
   // After lights and media: layers name light groups and media.
@@ -252,8 +277,15 @@ uint32_t SceneParseContext::material(JsonReader& node, std::string_view key) con
 }
 
 SceneDescription load_scene(const std::filesystem::path& file, const SceneLoadOptions& options) {
+  // A thin wrapper over the text entry point, so that both report the same errors.
   return as_scene_error(
-      [&] { return parse_document(read_json_file(file, "the scene file"), file, options); });
+      [&] { return parse_scene_text(read_text_file(file, "the scene file"), file, options); });
+}
+
+SceneDescription parse_scene_text(const std::string& text, const std::filesystem::path& file,
+                                  const SceneLoadOptions& options) {
+  return as_scene_error(
+      [&] { return parse_document(parse_json(text, file.string()), file, options); });
 }
 
 SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::path& file,

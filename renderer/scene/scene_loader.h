@@ -32,6 +32,11 @@ struct SceneLoadOptions {
 SceneDescription load_scene(const std::filesystem::path& file,
                             const SceneLoadOptions& options = {});
 
+// Same from the file's text (what load_scene reads): relative paths resolve
+// against `file.parent_path()`, and `file` names the scene in messages.
+SceneDescription parse_scene_text(const std::string& text, const std::filesystem::path& file,
+                                  const SceneLoadOptions& options = {});
+
 // Same from an already-parsed document; relative paths resolve against
 // `file.parent_path()`, and `file` names the scene in messages.
 SceneDescription parse_scene(const nlohmann::json& doc, const std::filesystem::path& file,

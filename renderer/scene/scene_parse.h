@@ -35,7 +35,11 @@ struct SceneParseContext {
 };
 
 // `T` of docs/scene-format.md: translate/rotate/scale or a row-major matrix.
+// Refuses a transform whose matrix or inverse is not finite.
 Transform parse_transform(JsonReader node);
+// Whether every entry of t's matrix and of its inverse is at most `limit` in
+// magnitude (and not NaN).
+bool transform_fits(const Transform& t, double limit);
 
 ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx);
 LightDesc parse_light(JsonReader node, SceneParseContext& ctx);

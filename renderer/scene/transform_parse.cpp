@@ -2,6 +2,7 @@
 // scale, then rotate, then translate, or {"matrix": 16 numbers, row-major}.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "renderer/scene/scene_parse.h"
 
@@ -35,9 +36,33 @@ Transform parse_matrix(JsonReader node) {
   return Transform(m);
 }
 
+// Either form, as written (parse_transform checks the result).
+Transform parse_transform_form(JsonReader node);
+
 }  // namespace
 
+bool transform_fits(const Transform& t, double limit) {
+  for (const Matrix4* m : {&t.matrix(), &t.inverse_matrix()})
+    for (const double v : m->m)
+      if (!(std::abs(v) <= limit)) return false;  // NaN and infinity too
+  return true;
+}
+
 Transform parse_transform(JsonReader node) {
+  const Transform t = parse_transform_form(node);
+  // A scale of 1e-310 is not zero, but its inverse is infinite (and a
+  // translate near the double range overflows once combined): every user
+  // of a transform needs its inverse too.
+  if (!transform_fits(t, std::numeric_limits<double>::max()))
+    node.fail(
+        "expected a transform whose matrix and inverse are finite, got one that "
+        "overflows (a scale too close to 0 or values too large)");
+  return t;
+}
+
+namespace {
+
+Transform parse_transform_form(JsonReader node) {
   node.expect_object();
   const auto matrix = node.optional_child("matrix");
   const auto translate = node.optional_child("translate");
@@ -77,5 +102,7 @@ Transform parse_transform(JsonReader node) {
   if (translate) t = Transform::translate(as_vec3(*translate)) * t;
   return t;
 }
+
+}  // namespace
 
 }  // namespace vesper

@@ -32,5 +32,16 @@ TEST(FrameRange, BadInputNamesThePiece) {
   }
 }
 
+// Found by the job fuzz target: a range of 2^31 frames or more overflowed
+// `end - start` in an int, so the limit was not applied (2^20 frames came back for
+// the first; without a step, billions were pushed).
+TEST(FrameRange, RangeSpanningTwoToThe31FramesIsRefused) {
+  EXPECT_THROW(parse_frame_range("-2147483648-2147483647x4096"), FrameRangeError);
+  EXPECT_THROW(parse_frame_range("-2147483648-2147483647x2000"), FrameRangeError);
+  // The limit counts frames: one million of them is allowed, one more is not.
+  EXPECT_EQ(parse_frame_range("1-1000000").size(), 1000000u);
+  EXPECT_THROW(parse_frame_range("0-1000000"), FrameRangeError);
+}
+
 }  // namespace
 }  // namespace vesper
