@@ -269,6 +269,7 @@ void add_server_and_worker(CLI::App& app, Dispatch& dispatch) {
                                                       : "Accept the shared worker token again");
     if (a == "add-worker" || a == "revoke")
       sub->add_option("name", t->name, "Worker name")->required();
+    add_quiet(sub);
     dispatch.on(sub, [t, a] {
       t->action = a;
       return run_tokens(*t);
