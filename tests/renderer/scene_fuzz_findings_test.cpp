@@ -10,6 +10,7 @@
 #include "renderer/scene/scene_loader.h"
 #include "renderer/volume/vdb_io.h"
 #include "tests/common/temp_dir.h"
+#include "tests/renderer/minimal_scene.h"
 
 namespace vesper {
 namespace {
@@ -17,16 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json base_scene() {
-  return json::parse(R"({
-    "format": "vesper-scene/1",
-    "camera": {"type": "perspective", "from": [0, 0, 4], "to": [0, 0, 0], "up": [0, 1, 0], "fov": 30},
-    "film": {"width": 16, "height": 8},
-    "render": {"spp": 1},
-    "materials": {"m": {"type": "diffuse"}},
-    "shapes": []
-  })");
-}
+using test::minimal_scene;
 
 // A 4^3 fog volume, 0.25 units a voxel, at the origin.
 void write_volume(const fs::path& file) {
@@ -53,7 +45,7 @@ SceneError error_of(const json& doc, const fs::path& dir) {
 TEST(SceneFuzzFindings, VdbFileAsEnvironmentImageIsRefused) {
   test::TempDir dir;
   write_volume(dir.path() / "cloud.vdb");
-  json doc = base_scene();
+  json doc = minimal_scene();
   doc["lights"] = json::parse(R"([{"type": "environment", "file": "cloud.vdb"}])");
   const SceneError e = error_of(doc, dir.path());
   EXPECT_EQ(e.json_path(), "/lights/0/file") << e.what();
@@ -64,7 +56,7 @@ TEST(SceneFuzzFindings, CameraDistanceBeyondTheDoubleRangeIsRefused) {
   test::TempDir dir;
   for (const char* from_to : {R"({"from": [1e308, 0, 0], "to": [-1e308, 0, 0]})",
                               R"({"from": [1e200, 0, 0], "to": [0, 0, 0]})"}) {
-    json doc = base_scene();
+    json doc = minimal_scene();
     doc["camera"].update(json::parse(from_to));
     const SceneError e = error_of(doc, dir.path());
     EXPECT_EQ(e.json_path(), "/camera/to") << e.what();
@@ -77,7 +69,7 @@ TEST(SceneFuzzFindings, CameraDistanceBeyondTheDoubleRangeIsRefused) {
 TEST(SceneFuzzFindings, CameraLensBeyondTheWorldLimitIsRefused) {
   test::TempDir dir;
   for (const char* key : {"aperture", "focus_distance"}) {
-    json doc = base_scene();
+    json doc = minimal_scene();
     doc["camera"]["aperture"] = 0.1;
     doc["camera"][key] = 1.7976931348623157e308;
     const SceneError e = error_of(doc, dir.path());
@@ -89,7 +81,7 @@ TEST(SceneFuzzFindings, CameraLensBeyondTheWorldLimitIsRefused) {
 TEST(SceneFuzzFindings, UninvertibleTransformIsRefused) {
   test::TempDir dir;
   for (const char* scale : {"1e-310", "[1, 1e-310, 1]"}) {
-    json doc = base_scene();
+    json doc = minimal_scene();
     doc["shapes"] = json::parse(R"([{"type": "mesh", "material": "m",
         "positions": [0, 0, 0, 1, 0, 0, 0, 1, 0], "indices": [0, 1, 2],
         "transform": {"scale": )" +
@@ -106,7 +98,7 @@ TEST(SceneFuzzFindings, UninvertibleTransformIsRefused) {
 TEST(SceneFuzzFindings, GridTranslateOverflowingFloatIsRefused) {
   test::TempDir dir;
   write_volume(dir.path() / "cloud.vdb");
-  json doc = base_scene();
+  json doc = minimal_scene();
   doc["media"] = json::parse(R"({"smoke": {"type": "vdb", "file": "cloud.vdb",
                                            "transform": {"translate": [1e308, 0, 0]}}})");
   const SceneError e = error_of(doc, dir.path());
@@ -121,7 +113,7 @@ TEST(SceneFuzzFindings, GridTranslateOverflowingFloatIsRefused) {
 // overflowed, so the render space's scale and every position were infinite.
 TEST(SceneFuzzFindings, ShapesBeyondTheWorldLimitAreRefused) {
   test::TempDir dir;
-  json doc = base_scene();
+  json doc = minimal_scene();
   doc["shapes"] = json::parse(R"([{"type": "mesh", "material": "m",
       "positions": [0, 0, 0, 1, 0, 0, 0, 1, 0], "indices": [0, 1, 2],
       "transform": {"scale": [1.7976931348623157e308, 0.6, 0.6], "translate": [-1, 0, 0]}},

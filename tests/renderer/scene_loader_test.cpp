@@ -16,6 +16,7 @@
 #include "renderer/scene/scene_loader.h"
 #include "renderer/volume/vdb_io.h"
 #include "tests/common/temp_dir.h"
+#include "tests/renderer/minimal_scene.h"
 
 namespace vesper {
 namespace {
@@ -31,17 +32,7 @@ void expect_near(const Vec3d& a, const Vec3d& b, double eps = 1e-12) {
   EXPECT_NEAR(a.z, b.z, eps);
 }
 
-// A minimal valid scene to modify in individual tests.
-json minimal_scene() {
-  return json::parse(R"({
-    "format": "vesper-scene/1",
-    "camera": {"type": "perspective", "from": [0, 0, 4], "to": [0, 0, 0], "up": [0, 1, 0], "fov": 30},
-    "film": {"width": 16, "height": 8},
-    "render": {"spp": 1},
-    "materials": {"m": {"type": "diffuse"}},
-    "shapes": []
-  })");
-}
+using test::minimal_scene;
 
 using test::TempDir;
 
