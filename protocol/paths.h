@@ -33,6 +33,14 @@ inline constexpr std::string_view kHeartbeat = "/heartbeat";
 inline constexpr std::string_view kComplete = "/complete";
 inline constexpr std::string_view kFail = "/fail";
 inline constexpr std::string_view kBlob = "/blobs/{sha256}";
+// The monitor (web16): the page and its assets at the root; the login under
+// the API prefix; a finished frame as a PNG thumbnail and a histogram.
+inline constexpr std::string_view kMonitorPage = "/";
+inline constexpr std::string_view kMonitorAsset = "/monitor/{asset}";
+inline constexpr std::string_view kLogin = "/login";
+inline constexpr std::string_view kLogout = "/logout";
+inline constexpr std::string_view kFrameThumbnail = "/jobs/{id}/frames/{frame}/thumbnail";
+inline constexpr std::string_view kFrameHistogram = "/jobs/{id}/frames/{frame}/histogram";
 }  // namespace paths
 
 // The query parameter of POST /jobs that validates without creating ("1" or "true").
@@ -45,6 +53,12 @@ inline constexpr std::string_view kTasksLimitParam = "tasks_limit";
 inline constexpr int kMaxTaskPage = 10000;
 // Response headers: the frame's blob (GET .../frames/{frame}).
 inline constexpr std::string_view kBlobHeader = "X-Vesper-Blob";
+// The monitor's session cookie (HttpOnly, SameSite=Strict), and the header a
+// state-changing request authorised by that cookie must carry (a cross-site
+// form cannot set it) with the value kMonitorHeaderValue.
+inline constexpr std::string_view kSessionCookie = "vesper_session";
+inline constexpr std::string_view kMonitorHeader = "X-Vesper-Monitor";
+inline constexpr std::string_view kMonitorHeaderValue = "1";
 
 // kApiPrefix + `relative` ("/jobs" -> "/api/v1/jobs").
 std::string api(std::string_view relative);

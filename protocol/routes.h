@@ -40,6 +40,14 @@ enum class Endpoint {
   Fail,
   PutBlob,
   GetBlob,  // also answers HEAD (see Route::method)
+  // The browser monitor (web16): its page and assets, the cookie login, and
+  // a finished frame as a thumbnail and a luminosity histogram.
+  MonitorPage,
+  MonitorAsset,
+  Login,
+  Logout,
+  FrameThumbnail,
+  FrameHistogram,
 };
 
 // Where a route's path lives: under kApiPrefix or at the server's root.
@@ -81,6 +89,13 @@ inline constexpr std::array kRoutes{
     Route{Endpoint::PutBlob,        Method::Put,  Scope::Api,  paths::kBlob,            Role::Either},
     Route{Endpoint::GetBlob,        Method::Get,  Scope::Api,  paths::kBlob,            Role::Either},
     Route{Endpoint::GetBlob,        Method::Head, Scope::Api,  paths::kBlob,            Role::Either},
+    // The monitor (web16).
+    Route{Endpoint::MonitorPage,    Method::Get,  Scope::Root, paths::kMonitorPage,     Role::None},
+    Route{Endpoint::MonitorAsset,   Method::Get,  Scope::Root, paths::kMonitorAsset,    Role::None},
+    Route{Endpoint::Login,          Method::Post, Scope::Api,  paths::kLogin,           Role::None},
+    Route{Endpoint::Logout,         Method::Post, Scope::Api,  paths::kLogout,          Role::None},
+    Route{Endpoint::FrameThumbnail, Method::Get,  Scope::Api,  paths::kFrameThumbnail,  Role::Submitter},
+    Route{Endpoint::FrameHistogram, Method::Get,  Scope::Api,  paths::kFrameHistogram,  Role::Submitter},
 };
 // clang-format on
 

@@ -11,6 +11,8 @@ namespace vesper {
 
 class BlobStore;
 class FrameMerger;
+class FrameViews;
+class TokenFile;
 class LeaseTracker;
 class LockedStore;
 class ResultExpectations;
@@ -53,11 +55,13 @@ struct WorkerHandlerDeps {
 void add_worker_handlers(HandlerTable& table, const WorkerHandlerDeps& deps);
 
 // Frames (submitter token): every frame's state, a frame's EXR (merged by
-// the FrameMerger when the frame was split). frame_handlers.cpp
+// the FrameMerger when the frame was split), and for the monitor its PNG
+// thumbnail and luminosity histogram (frame_views.h). frame_handlers.cpp
 struct FrameHandlerDeps {
   LockedStore& store;
   const BlobStore& blobs;
   FrameMerger& merger;
+  FrameViews& views;
 };
 void add_frame_handlers(HandlerTable& table, const FrameHandlerDeps& deps);
 
@@ -72,5 +76,11 @@ struct OpsHandlerDeps {
   const ServerCounters& counters;
 };
 void add_ops_handlers(HandlerTable& table, const OpsHandlerDeps& deps);
+
+// The browser monitor: GET / and /monitor/{asset} from the files embedded at
+// build time (server/monitor/), POST /login (the submitter token in, the
+// session cookie out; server/monitor_auth.h) and POST /logout.
+// monitor_handlers.cpp
+void add_monitor_handlers(HandlerTable& table, TokenFile& tokens);
 
 }  // namespace vesper

@@ -14,6 +14,7 @@
 #include "server/api_error.h"
 #include "server/http_connections.h"
 #include "server/metrics.h"
+#include "server/monitor_auth.h"
 #include "server/server.h"
 #include "server/tokens.h"
 
@@ -60,6 +61,26 @@ bool authorized(const RequestHead& req, Role role, TokenFile& token_file) {
       break;
   }
   return true;
+}
+
+enum class Access { Allowed, Refused, CookieWithoutHeader };
+
+// The bearer token, else the monitor's session cookie (monitor_auth.h), else
+// read-only viewing when configured.
+Access access(const RequestHead& req, const protocol::Route& route, TokenFile& token_file,
+              bool read_only) {
+  if (authorized(req, route.role, token_file)) return Access::Allowed;
+  if (!bearer(req).empty()) return Access::Refused;  // a wrong token is never overridden
+  const std::string cookie = cookie_value(req.field("Cookie"), protocol::kSessionCookie);
+  if (!cookie.empty() && cookie_may_authorize(route) &&
+      constant_time_equal(cookie, session_value(token_file.current()->submitter))) {
+    const bool reads = route.method == Method::Get;
+    if (!reads && req.field(protocol::kMonitorHeader) != protocol::kMonitorHeaderValue)
+      return Access::CookieWithoutHeader;
+    return Access::Allowed;
+  }
+  if (read_only && route.method == Method::Get && read_only_viewable(route)) return Access::Allowed;
+  return Access::Refused;
 }
 
 const char* token_name(Role role) {
@@ -145,7 +166,13 @@ struct HttpApi::Impl {
     }
     if (!found) return {error_response(404, "no such endpoint: " + h.method + " " + h.path), {}};
     const Role role = found->route.role;
-    if (!authorized(h, role, tokens)) {
+    const Access a = access(h, found->route, tokens, config.monitor_read_only);
+    if (a == Access::CookieWithoutHeader)
+      return {error_response(403, "a request authorised by the monitor's session cookie must "
+                                  "carry the header " + std::string(protocol::kMonitorHeader) +
+                                  ": " + std::string(protocol::kMonitorHeaderValue)),
+              {}};
+    if (a == Access::Refused) {
       ApiResponse r = error_response(
           401, std::string("missing or wrong bearer token (this endpoint needs the ") +
                    token_name(role) +

@@ -14,6 +14,7 @@
 #include "server/blob_store.h"
 #include "server/data_dir.h"
 #include "server/frame_merger.h"
+#include "server/frame_views.h"
 #include "server/handlers.h"
 #include "server/http_api.h"
 #include "server/lease_tracker.h"
@@ -76,6 +77,7 @@ struct Server::Impl {
   ServerCounters counters;
   LeaseTracker leases;
   FrameMerger merger;
+  FrameViews views;
   HttpApi http;  // last: stopped (and destroyed) before what its handlers use
   int bound_port = 0;
   bool started = false, stopped = false;
@@ -93,6 +95,7 @@ struct Server::Impl {
         leases(store, clock, workers, config.lease_seconds),
         merger(FrameMergerConfig{config.data_dir, config.vesper_binary, config.merge_retry_seconds},
                store, blobs, clock),
+        views(config.data_dir / "monitor-cache"),
         http(config, tokens, counters) {}
 
   HandlerTable handlers() {
@@ -103,9 +106,10 @@ struct Server::Impl {
         {store, blobs, workers, leases, counters, clock, config.lease_seconds, config.task_timeout,
          [this] { merger.wake(); }, config.verify_results ? &expectations : nullptr,
          [this](const std::string& r) { return !r.empty() && trusted.count(r) > 0; }});
-    add_frame_handlers(table, {store, blobs, merger});
+    add_frame_handlers(table, {store, blobs, merger, views});
     add_blob_handlers(table, blobs);
     add_ops_handlers(table, {store, workers, counters});
+    add_monitor_handlers(table, tokens);
     return table;
   }
 };

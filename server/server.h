@@ -4,7 +4,8 @@
 // workers, /metrics and /healthz. See server/README.md for the API.
 //
 // Data dir layout: tokens.json (0600), jobs.sqlite (+WAL), workers.json,
-// blobs/ab/cdef... (+ blobs/tmp/), merge-tmp/ (merges in flight).
+// blobs/ab/cdef... (+ blobs/tmp/), merge-tmp/ (merges in flight),
+// monitor-cache/ (the monitor's thumbnails and histograms, by output blob).
 //
 // The HTTP layer is http_api.* over http_connections.* (server/README.md,
 // "Connections").
@@ -71,6 +72,11 @@ struct ServerConfig {
   // Trust this server's own executable's build too (the `vesper` binary that
   // workers of the same installation run).
   bool trust_own_build = true;
+  // The browser monitor (GET /): with this set, its reads (jobs, tasks and
+  // their logs, frames' states, thumbnails and histograms, workers) need no
+  // token, for a wall screen; its actions still need a login. Frames' EXRs
+  // and blobs always need a token (server/monitor_auth.h).
+  bool monitor_read_only = false;
 };
 
 class Server {
