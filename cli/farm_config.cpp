@@ -44,6 +44,13 @@ Setter number(double& out, double lo, double hi) {
   };
 }
 
+Setter boolean(bool& out) {
+  return [&out](const toml::node& n) {
+    if (!n.is_boolean()) throw std::invalid_argument("expected true or false");
+    out = *n.value<bool>();
+  };
+}
+
 // An array of SHA-256 hex digests (renderer builds).
 Setter sha256_list(std::vector<std::string>& out) {
   return [&out](const toml::node& n) {
@@ -75,7 +82,8 @@ std::map<std::string, std::map<std::string, Setter>> setters(FarmSettings& s) {
         {"header_timeout", number(s.server.header_timeout, 0.1, 3600)},
         {"idle_timeout", number(s.server.idle_timeout, 0.1, 3600)},
         {"task_timeout", number(s.server.task_timeout, 0, 30 * 86400)},
-        {"trusted_renderers", sha256_list(s.server.trusted_renderers)}}},
+        {"trusted_renderers", sha256_list(s.server.trusted_renderers)},
+        {"monitor_read_only", boolean(s.server.monitor_read_only)}}},
       {"worker",
        {{"server", str(s.worker.server)},
         {"cache_dir", str(s.worker.cache_dir)},

@@ -24,6 +24,8 @@ struct FarmServerSettings {
   // Renderer builds (sha256) whose results later identical jobs may reuse,
   // besides the server's own build.
   std::vector<std::string> trusted_renderers;
+  // The browser monitor's reads without a token (a wall screen on a trusted network).
+  bool monitor_read_only = false;
 };
 
 struct FarmWorkerSettings {
