@@ -71,8 +71,9 @@ void print_row(const Run& r, const char* label, const std::vector<double>& lease
 int print_checks(const std::vector<Run>& runs) {
   int status = 0;
   for (const Run& r : runs) {
-    const std::string name =
+    std::string name =
         r.name == "store" ? "store" : (r.keep_alive ? "HTTP keep-alive" : "HTTP per request");
+    if (r.monitor_pages > 0) name += " + monitor";
     const std::string retried =
         r.retries ? ", " + std::to_string(r.retries) + " requests repeated after no response" : "";
     if (r.problems.empty()) {

@@ -37,6 +37,8 @@ struct Run {
   std::string name;
   int workers = 0, tasks = 0;
   bool keep_alive = false;  // HTTP runs
+  int monitor_pages = 0;    // HTTP runs with simulated monitor pages (monitor_pages.h)
+  int64_t monitor_requests = 0;
   int retries = 0;
   double wall = 0, cores = 0;
   std::vector<double> lease_ms, complete_ms, lease_in_ms, complete_in_ms;

@@ -4,6 +4,7 @@
 //
 //   ./build/bench/vesper_farm_bench [--tasks N] [--workers W] [--single-tasks N]
 //       [--server-threads T] [--keep-alive | --connection-per-request] [--dir D] [--quick]
+//       [--monitor-pages P] [--monitor-interval S]
 //
 // Six runs, each on a fresh data dir: the JobStore alone with 1 and W
 // threads, and a real vesper::Server on 127.0.0.1 with 1 and W httplib
@@ -11,7 +12,9 @@
 // handle), then with a new connection per request. Every run checks that
 // each task was completed exactly once (by the workers' own tally and by the
 // store or API afterwards); the program exits with 1 if any run lost or
-// duplicated work.
+// duplicated work. With --monitor-pages P (5) > 0, the keep-alive run with W
+// workers is repeated with P open monitor pages polling every S (2) seconds
+// (monitor_pages.h), so the two rows show what the pages cost.
 #include <httplib.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -34,6 +37,7 @@
 #include <vector>
 
 #include "bench/farm/dispatch_run.h"
+#include "bench/farm/monitor_pages.h"
 #include "common/sha256.h"
 #include "jobs/job_store.h"
 #include "server/server.h"
@@ -146,6 +150,8 @@ Run store_run(const fs::path& dir, int tasks, int workers) {
 
 struct HttpOptions {
   int server_threads = 16;
+  int monitor_pages = 5;          // the extra run's open monitor pages (0: no such run)
+  double monitor_interval = 2.0;  // seconds between a page's polls (monitor.js)
   enum class Connections { Both, KeepAlive, PerRequest } connections = Connections::Both;
 };
 
@@ -287,9 +293,11 @@ struct HttpLoad {
 // A real Server on 127.0.0.1 (ephemeral port, fresh data dir) and `workers`
 // httplib clients, each registering once and then looping lease -> complete
 // with one pre-uploaded result blob. Latency is the client-side round trip.
-Run http_run(const fs::path& dir, int tasks, int workers, const HttpOptions& o, bool keep_alive) {
+Run http_run(const fs::path& dir, int tasks, int workers, const HttpOptions& o, bool keep_alive,
+             int monitor_pages = 0) {
   Run run("HTTP", workers, tasks);
   run.keep_alive = keep_alive;
+  run.monitor_pages = monitor_pages;
   fs::remove_all(dir);
   ServerConfig config;
   config.data_dir = dir;
@@ -307,8 +315,17 @@ Run http_run(const fs::path& dir, int tasks, int workers, const HttpOptions& o, 
   httplib::Client admin("127.0.0.1", load.port);
   admin.set_read_timeout(60);
   const int64_t job = load.submit(admin, tasks);
+  std::optional<MonitorPages> pages;
+  if (monitor_pages > 0)
+    pages.emplace(load.port, server.submitter_token(), monitor_pages, o.monitor_interval, job);
   auto tally =
       run_workers(run, [&](int w, WorkerLog& log, auto ready) { load.worker(w, log, ready); });
+  if (pages) {
+    pages->stop();
+    run.monitor_requests = pages->requests();
+    if (pages->failures())
+      run.problems.push_back(std::to_string(pages->failures()) + " monitor requests failed");
+  }
   load.check(admin, job, tally, run);
   server.stop();
   return run;
@@ -318,7 +335,7 @@ int usage(const char* argv0) {
   std::fprintf(stderr,
                "usage: %s [--tasks N (1000)] [--workers W (50)] [--single-tasks N (200)]\n"
                "          [--server-threads T (16)] [--keep-alive | --connection-per-request]\n"
-               "          [--dir DIR] [--quick]\n",
+               "          [--dir DIR] [--quick] [--monitor-pages P (5)] [--monitor-interval S (2)]\n",
                argv0);
   return 2;
 }
@@ -350,6 +367,12 @@ std::optional<Options> parse_options(int argc, char** argv) {
       o.http.connections = HttpOptions::Connections::KeepAlive;
     } else if (a == "--connection-per-request") {
       o.http.connections = HttpOptions::Connections::PerRequest;
+    } else if (a == "--monitor-pages" || a == "--monitor-interval") {
+      const char* v = value();
+      if (!v) return std::nullopt;
+      if (a == "--monitor-pages") o.http.monitor_pages = std::atoi(v);
+      else o.http.monitor_interval = std::atof(v);
+      if (o.http.monitor_pages < 0 || !(o.http.monitor_interval > 0)) return std::nullopt;
     } else if (a == "--dir") {
       const char* v = value();
       if (!v) return std::nullopt;
@@ -380,6 +403,9 @@ int run_all(const Options& o, const fs::path& dir, std::vector<Run>& runs) {
       const std::string k = keep_alive ? "-ka" : "-close";
       runs.push_back(http_run(dir / ("http-1" + k), o.single_tasks, 1, o.http, keep_alive));
       runs.push_back(http_run(dir / ("http-n" + k), o.tasks, o.workers, o.http, keep_alive));
+      if (keep_alive && o.http.monitor_pages > 0)
+        runs.push_back(http_run(dir / "http-n-monitor", o.tasks, o.workers, o.http, true,
+                                o.http.monitor_pages));
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
@@ -402,12 +428,21 @@ void print_table(const Options& o, const std::vector<Run>& runs) {
     if (r.name == "store") {
       print_row(r, "JobStore + mutex (caller's wait)", r.lease_ms, r.complete_ms, true);
       print_row(r, "  inside the mutex (the call)", r.lease_in_ms, r.complete_in_ms, false);
+    } else if (r.monitor_pages > 0) {
+      const std::string label = "  + " + std::to_string(r.monitor_pages) + " monitor pages";
+      print_row(r, label.c_str(), r.lease_ms, r.complete_ms, true);
     } else {
       print_row(
           r, r.keep_alive ? "HTTP keep-alive (round trip)" : "HTTP conn. per request (round trip)",
           r.lease_ms, r.complete_ms, true);
     }
   }
+  for (const Run& r : runs)
+    if (r.monitor_pages > 0)
+      std::printf("\n%d monitor pages (login cookie; jobs + workers + the job's first 500 tasks "
+                  "every %.1f s) made %lld requests in %.2f s (%.1f/s)\n",
+                  r.monitor_pages, o.http.monitor_interval, (long long)r.monitor_requests, r.wall,
+                  double(r.monitor_requests) / r.wall);
   // The last lease of each worker (the one that finds no work) is in the
   // latencies but is not a task.
   std::printf("\n");

@@ -12,6 +12,7 @@
 
 #include "regress/report_html.h"
 #include "tests/common/background_process.h"
+#include "tests/common/chromium.h"
 #include "tests/common/temp_dir.h"
 #include "tests/regress/report_fixtures.h"
 #include "tests/regress/report_test_util.h"
@@ -20,23 +21,6 @@ namespace vesper::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-// $VESPER_CHROMIUM, else the first of the usual names on PATH; empty if none.
-std::string find_chromium() {
-  if (const char* env = std::getenv("VESPER_CHROMIUM"); env && *env) return env;
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "/usr/bin:/bin";
-  for (const char* name : {"chromium", "chromium-browser", "google-chrome"}) {
-    size_t start = 0;
-    while (start <= dirs.size()) {
-      const size_t end = std::min(dirs.find(':', start), dirs.size());
-      const fs::path candidate = fs::path(dirs.substr(start, end - start)) / name;
-      if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-      start = end + 1;
-    }
-  }
-  return "";
-}
 
 // Appended to a copy of the page (never the page itself, which has no
 // script): after load, every picture that did not decode is a console
@@ -57,42 +41,10 @@ std::string with_before_body_end(std::string html, const std::string& insert) {
   return html.replace(at, 7, insert);
 }
 
-// Chromium's own log lines for page console messages ("INFO:CONSOLE(..)",
-// "ERROR:CONSOLE"), and uncaught exceptions.
-std::vector<std::string> console_lines(const std::string& log) {
-  std::vector<std::string> lines;
-  static const std::regex console(R"re(:CONSOLE|Uncaught)re");
-  std::istringstream in(log);
-  for (std::string line; std::getline(in, line);)
-    if (std::regex_search(line, console)) lines.push_back(line);
-  return lines;
-}
-
-struct BrowserRun {
-  fs::path dom, log;
-  std::unique_ptr<BackgroundProcess> process;
-};
-
-// `extra` flags before the URL (--screenshot=...); a fresh profile per run so
-// two can run at once.
-BrowserRun start_chromium(const std::string& chromium, const fs::path& page, const fs::path& work,
+// A file page in Chromium (tests/common/chromium.h).
+BrowserRun start_on_file(const std::string& chromium, const fs::path& page, const fs::path& work,
                           const std::string& name, const std::vector<std::string>& extra) {
-  BrowserRun run{work / (name + ".dom.html"), work / (name + ".log"), nullptr};
-  std::vector<std::string> argv{chromium,
-                                "--headless",
-                                "--disable-gpu",
-                                "--no-sandbox",
-                                "--no-first-run",
-                                "--disable-extensions",
-                                "--disable-background-networking",
-                                "--user-data-dir=" + (work / (name + "-profile")).string(),
-                                "--enable-logging=stderr",
-                                "--v=0",
-                                "--dump-dom"};
-  argv.insert(argv.end(), extra.begin(), extra.end());
-  argv.push_back("file://" + fs::absolute(page).string());
-  run.process = std::make_unique<BackgroundProcess>(argv, run.dom, run.log);
-  return run;
+  return test::start_chromium(chromium, "file://" + fs::absolute(page).string(), work, name, extra);
 }
 
 TEST(ReportBrowser, ChromiumShowsTheVerdictsWithoutConsoleErrors) {
@@ -113,9 +65,9 @@ TEST(ReportBrowser, ChromiumShowsTheVerdictsWithoutConsoleErrors) {
 
   const fs::path screenshot = artifacts / "report-screenshot.png";
   BrowserRun good =
-      start_chromium(chromium, checked, work.path(), "good",
+      start_on_file(chromium, checked, work.path(), "good",
                      {"--window-size=1280,2600", "--screenshot=" + screenshot.string()});
-  BrowserRun bad = start_chromium(chromium, broken, work.path(), "bad", {});
+  BrowserRun bad = start_on_file(chromium, broken, work.path(), "bad", {});
   ASSERT_EQ(good.process->wait_for(90), 0) << read_text(good.log);
   ASSERT_EQ(bad.process->wait_for(90), 0) << read_text(bad.log);
   fs::remove(checked);
