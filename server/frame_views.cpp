@@ -28,7 +28,8 @@ void write_png(const RgbaImage& display, const fs::path& path) {
   std::vector<uint8_t> bytes(display.pixel_count() * 3);
   for (size_t i = 0; i < display.pixel_count(); ++i)
     for (size_t c = 0; c < 3; ++c)
-      bytes[i * 3 + c] = uint8_t(std::lround(std::clamp(display.pixels[i * 4 + c], 0.f, 1.f) * 255));
+      bytes[i * 3 + c] =
+          uint8_t(std::lround(std::clamp(display.pixels[i * 4 + c], 0.f, 1.f) * 255));
   auto out = OIIO::ImageOutput::create("png");
   if (!out) throw CompError(path.string() + ": no PNG writer: " + OIIO::geterror());
   const OIIO::ImageSpec spec(display.width, display.height, 3, OIIO::TypeDesc::UINT8);

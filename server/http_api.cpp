@@ -168,9 +168,11 @@ struct HttpApi::Impl {
     const Role role = found->route.role;
     const Access a = access(h, found->route, tokens, config.monitor_read_only);
     if (a == Access::CookieWithoutHeader)
-      return {error_response(403, "a request authorised by the monitor's session cookie must "
-                                  "carry the header " + std::string(protocol::kMonitorHeader) +
-                                  ": " + std::string(protocol::kMonitorHeaderValue)),
+      return {error_response(403,
+                             "a request authorised by the monitor's session cookie must "
+                             "carry the header " +
+                                 std::string(protocol::kMonitorHeader) + ": " +
+                                 std::string(protocol::kMonitorHeaderValue)),
               {}};
     if (a == Access::Refused) {
       ApiResponse r = error_response(

@@ -332,11 +332,12 @@ Run http_run(const fs::path& dir, int tasks, int workers, const HttpOptions& o, 
 }
 
 int usage(const char* argv0) {
-  std::fprintf(stderr,
-               "usage: %s [--tasks N (1000)] [--workers W (50)] [--single-tasks N (200)]\n"
-               "          [--server-threads T (16)] [--keep-alive | --connection-per-request]\n"
-               "          [--dir DIR] [--quick] [--monitor-pages P (5)] [--monitor-interval S (2)]\n",
-               argv0);
+  std::fprintf(
+      stderr,
+      "usage: %s [--tasks N (1000)] [--workers W (50)] [--single-tasks N (200)]\n"
+      "          [--server-threads T (16)] [--keep-alive | --connection-per-request]\n"
+      "          [--dir DIR] [--quick] [--monitor-pages P (5)] [--monitor-interval S (2)]\n",
+      argv0);
   return 2;
 }
 
@@ -370,8 +371,10 @@ std::optional<Options> parse_options(int argc, char** argv) {
     } else if (a == "--monitor-pages" || a == "--monitor-interval") {
       const char* v = value();
       if (!v) return std::nullopt;
-      if (a == "--monitor-pages") o.http.monitor_pages = std::atoi(v);
-      else o.http.monitor_interval = std::atof(v);
+      if (a == "--monitor-pages")
+        o.http.monitor_pages = std::atoi(v);
+      else
+        o.http.monitor_interval = std::atof(v);
       if (o.http.monitor_pages < 0 || !(o.http.monitor_interval > 0)) return std::nullopt;
     } else if (a == "--dir") {
       const char* v = value();
@@ -439,10 +442,11 @@ void print_table(const Options& o, const std::vector<Run>& runs) {
   }
   for (const Run& r : runs)
     if (r.monitor_pages > 0)
-      std::printf("\n%d monitor pages (login cookie; jobs + workers + the job's first 500 tasks "
-                  "every %.1f s) made %lld requests in %.2f s (%.1f/s)\n",
-                  r.monitor_pages, o.http.monitor_interval, (long long)r.monitor_requests, r.wall,
-                  double(r.monitor_requests) / r.wall);
+      std::printf(
+          "\n%d monitor pages (login cookie; jobs + workers + the job's first 500 tasks "
+          "every %.1f s) made %lld requests in %.2f s (%.1f/s)\n",
+          r.monitor_pages, o.http.monitor_interval, (long long)r.monitor_requests, r.wall,
+          double(r.monitor_requests) / r.wall);
   // The last lease of each worker (the one that finds no work) is in the
   // latencies but is not a task.
   std::printf("\n");

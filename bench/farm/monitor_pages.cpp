@@ -9,7 +9,11 @@ namespace vesper::farm_bench {
 
 MonitorPages::MonitorPages(int port, std::string submitter_token, int pages, double interval,
                            int64_t job)
-    : port_(port), token_(std::move(submitter_token)), pages_(pages), interval_(interval), job_(job) {
+    : port_(port),
+      token_(std::move(submitter_token)),
+      pages_(pages),
+      interval_(interval),
+      job_(job) {
   for (int i = 0; i < pages; ++i) threads_.emplace_back([this, i] { page(i); });
 }
 

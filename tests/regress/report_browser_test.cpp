@@ -43,7 +43,7 @@ std::string with_before_body_end(std::string html, const std::string& insert) {
 
 // A file page in Chromium (tests/common/chromium.h).
 BrowserRun start_on_file(const std::string& chromium, const fs::path& page, const fs::path& work,
-                          const std::string& name, const std::vector<std::string>& extra) {
+                         const std::string& name, const std::vector<std::string>& extra) {
   return test::start_chromium(chromium, "file://" + fs::absolute(page).string(), work, name, extra);
 }
 
@@ -66,7 +66,7 @@ TEST(ReportBrowser, ChromiumShowsTheVerdictsWithoutConsoleErrors) {
   const fs::path screenshot = artifacts / "report-screenshot.png";
   BrowserRun good =
       start_on_file(chromium, checked, work.path(), "good",
-                     {"--window-size=1280,2600", "--screenshot=" + screenshot.string()});
+                    {"--window-size=1280,2600", "--screenshot=" + screenshot.string()});
   BrowserRun bad = start_on_file(chromium, broken, work.path(), "bad", {});
   ASSERT_EQ(good.process->wait_for(90), 0) << read_text(good.log);
   ASSERT_EQ(bad.process->wait_for(90), 0) << read_text(bad.log);

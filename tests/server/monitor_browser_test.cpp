@@ -117,10 +117,10 @@ TEST_F(MonitorBrowser, ChromiumWatchesAJobFinishWithoutConsoleErrors) {
 
   // The job page, finished: thumbnails of its frames; a screenshot for a human.
   const fs::path screenshot = artifacts / "monitor-screenshot.png";
-  test::BrowserRun page = test::start_chromium(
-      chromium, server_->url() + "/#/jobs/" + id, dir_, "job",
-      {"--window-size=1400,1000", "--screenshot=" + screenshot.string(),
-       "--virtual-time-budget=5000"});
+  test::BrowserRun page =
+      test::start_chromium(chromium, server_->url() + "/#/jobs/" + id, dir_, "job",
+                           {"--window-size=1400,1000", "--screenshot=" + screenshot.string(),
+                            "--virtual-time-budget=5000"});
   ASSERT_EQ(page.process->wait_for(120), 0) << read_text(page.log);
   EXPECT_EQ(test::console_lines(read_text(page.log)), std::vector<std::string>{});
   const std::string job_dom = read_text(page.dom);

@@ -57,10 +57,10 @@ TEST_F(MonitorTest, ThePageAndItsAssetsAreServedFromTheBinary) {
   EXPECT_NE(page->get_header_value("Content-Security-Policy").find("default-src 'self'"),
             std::string::npos);
   EXPECT_EQ(page->body.find("http://"), std::string::npos) << "the page loads nothing from the web";
-  EXPECT_EQ(page->body.find("https://"), std::string::npos) << "the page loads nothing from the web";
-  for (const auto& [asset, type] :
-       {std::pair{"monitor.js", "text/javascript; charset=utf-8"},
-        std::pair{"monitor.css", "text/css; charset=utf-8"}}) {
+  EXPECT_EQ(page->body.find("https://"), std::string::npos)
+      << "the page loads nothing from the web";
+  for (const auto& [asset, type] : {std::pair{"monitor.js", "text/javascript; charset=utf-8"},
+                                    std::pair{"monitor.css", "text/css; charset=utf-8"}}) {
     auto r = client().Get((std::string("/monitor/") + asset).c_str());
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 200) << asset;
@@ -105,8 +105,9 @@ TEST_F(MonitorTest, TheSessionCookieWorksForReadsAndJobActions) {
   EXPECT_EQ(set.find(server_->submitter_token()), std::string::npos) << "not the token itself";
   const std::string c = set.substr(0, set.find(';'));
 
-  for (const std::string path : {"/api/v1/jobs", "/api/v1/jobs/" + std::to_string(job),
-                                 "/api/v1/workers", "/api/v1/jobs/" + std::to_string(job) + "/frames"})
+  for (const std::string path :
+       {"/api/v1/jobs", "/api/v1/jobs/" + std::to_string(job), "/api/v1/workers",
+        "/api/v1/jobs/" + std::to_string(job) + "/frames"})
     EXPECT_EQ(status_of(client().Get(path.c_str(), cookie(c, false))), 200) << path;
   const std::string pause = "/api/v1/jobs/" + std::to_string(job) + "/pause";
   // A state change on the cookie alone (what a cross-site form could send) is refused...
@@ -123,9 +124,9 @@ TEST_F(MonitorTest, TheSessionCookieWorksForReadsAndJobActions) {
 
   // Never for submitting work or storing bytes.
   const json body{{"name", "x"}, {"scene", sha256_hex("s")}, {"frames", "1"}};
-  EXPECT_EQ(status_of(client().Post("/api/v1/jobs", cookie(c, true), body.dump(),
-                                    "application/json")),
-            401);
+  EXPECT_EQ(
+      status_of(client().Post("/api/v1/jobs", cookie(c, true), body.dump(), "application/json")),
+      401);
   EXPECT_EQ(status_of(client().Put(("/api/v1/blobs/" + sha256_hex("b")).c_str(), cookie(c, true),
                                    "b", "application/octet-stream")),
             401);
@@ -214,9 +215,8 @@ TEST_F(MonitorTest, AFinishedFrameHasAThumbnailAndAHistogram) {
   auto again = client().Get((frame + "/thumbnail").c_str(), sub());
   ASSERT_TRUE(again);
   EXPECT_EQ(again->body, thumb->body);
-  EXPECT_EQ(status_of(client().Get(("/api/v1/jobs/" + std::to_string(job) + "/frames/7/histogram")
-                                       .c_str(),
-                                   sub())),
+  EXPECT_EQ(status_of(client().Get(
+                ("/api/v1/jobs/" + std::to_string(job) + "/frames/7/histogram").c_str(), sub())),
             404);
 }
 
