@@ -105,9 +105,9 @@ TEST_F(MonitorTest, TheSessionCookieWorksForReadsAndJobActions) {
   EXPECT_EQ(set.find(server_->submitter_token()), std::string::npos) << "not the token itself";
   const std::string c = set.substr(0, set.find(';'));
 
-  for (const std::string path :
-       {"/api/v1/jobs", "/api/v1/jobs/" + std::to_string(job), "/api/v1/workers",
-        "/api/v1/jobs/" + std::to_string(job) + "/frames"})
+  const std::string jp = "/api/v1/jobs/" + std::to_string(job);
+  for (const std::string& path :
+       std::vector<std::string>{"/api/v1/jobs", jp, "/api/v1/workers", jp + "/frames"})
     EXPECT_EQ(status_of(client().Get(path.c_str(), cookie(c, false))), 200) << path;
   const std::string pause = "/api/v1/jobs/" + std::to_string(job) + "/pause";
   // A state change on the cookie alone (what a cross-site form could send) is refused...
@@ -142,7 +142,7 @@ TEST_F(MonitorTest, ReadOnlyViewingNeedsNoTokenButActionsDo) {
   start(c);
   const int64_t job = submit(1);
   const std::string j = "/api/v1/jobs/" + std::to_string(job);
-  for (const std::string path : {std::string("/api/v1/jobs"), j, std::string("/api/v1/workers")})
+  for (const std::string& path : std::vector<std::string>{"/api/v1/jobs", j, "/api/v1/workers"})
     EXPECT_EQ(status_of(client().Get(path.c_str())), 200) << path;
   EXPECT_EQ(status_of(client().Post((j + "/cancel").c_str(), "{}", "application/json")), 401);
   EXPECT_EQ(status_of(client().Get((j + "/frames/1").c_str())), 401) << "EXRs need a token";
