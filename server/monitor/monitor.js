@@ -106,7 +106,10 @@ function progressBar(counts, total) {
 
 // ---- state ----
 
-const view = { job: null, selectedFrame: null, frameBlobs: new Map(), timer: 0, inFlight: false };
+const view = {
+  job: null, selectedFrame: null, histogramShown: null, workerNames: new Map(), timer: 0,
+  inFlight: false,
+};
 let observed = []; // what the page saw change, for a reader of the DOM (the browser test)
 
 function notice(text) {
@@ -226,7 +229,8 @@ function taskRow(job, t, now) {
     : el("span", { class: "quiet" }, t.reused_from ? `reused from ${t.reused_from}` : "—");
   return el("tr", { "data-task": t.id },
     el("td", { class: "num" }, t.id), el("td", { class: "num" }, t.frame),
-    el("td", {}, samples), el("td", {}, state), el("td", {}, t.worker || "—"),
+    el("td", {}, samples), el("td", {}, state),
+    el("td", { title: t.worker || "" }, view.workerNames.get(t.worker) || t.worker || "—"),
     el("td", { class: "num" }, t.attempts), el("td", { class: "num" }, span(duration(t, now))),
     el("td", {}, log));
 }
@@ -245,7 +249,8 @@ async function showLog(job, task) {
 
 function frameTile(job, f) {
   const tile = el("div", { class: "frame" + (view.selectedFrame === f.frame ? " selected" : ""),
-    "data-frame": f.frame, title: f.error || "", onclick: () => selectFrame(job, f) });
+    "data-frame": f.frame, title: f.error || "",
+    onclick: () => { location.hash = `#/jobs/${job}/frames/${f.frame}`; } });
   if (f.state === "ready" && f.blob) {
     // The blob names the picture, so a finished frame's image is fetched once.
     tile.append(el("img", { alt: `frame ${f.frame}`, loading: "lazy",
@@ -274,6 +279,7 @@ async function renderJob(id) {
   const now = Date.now() / 1000;
   renderJobSummary(detail, now);
   renderFrames(id, detail.frames || []);
+  await showHistogram(id, detail.frames || []);
   $("tasks").tBodies[0].replaceChildren(...(detail.tasks || []).map((t) => taskRow(detail, t, now)));
   $("tasks-more").hidden = !num(detail.tasks_next);
   $("tasks-more").textContent = `The first ${TASK_PAGE} tasks are shown ` +
@@ -282,17 +288,18 @@ async function renderJob(id) {
 
 // ---- histogram ----
 
-async function selectFrame(job, f) {
-  if (f.state !== "ready") return;
-  view.selectedFrame = f.frame;
-  $("frames").dataset.key = "";
+// The selected frame's histogram, fetched once it is ready (and once only).
+async function showHistogram(job, frames) {
+  const f = frames.find((x) => x.frame === view.selectedFrame);
+  const key = f && f.state === "ready" ? `${job}/${f.frame}/${f.blob}` : null;
+  if (!key || view.histogramShown === key) return;
+  view.histogramShown = key;
   try {
     const h = await api(`/jobs/${job}/frames/${f.frame}/histogram`);
     drawHistogram(h, `Frame ${f.frame}: luminosity (${h.width}×${h.height}, sRGB, no grade)`);
   } catch (e) {
     notice(`histogram of frame ${f.frame}: ${e.message}`);
   }
-  poll();
 }
 
 // Bars as fractions of the pixels, scaled to the largest interior bin (a
@@ -349,22 +356,26 @@ function workerRow(w, now) {
 function renderWorkers(list) {
   const now = num(list.now) ? list.now : Date.now() / 1000;
   const workers = list.workers || [];
+  view.workerNames = new Map(workers.map((w) => [w.worker_id, w.name]));
   $("workers").tBodies[0].replaceChildren(...workers.map((w) => workerRow(w, now)));
   $("no-workers").hidden = workers.length > 0;
 }
 
 // ---- the loop ----
 
+// #/ (jobs), #/jobs/ID (a job), #/jobs/ID/frames/N (a job, frame N's histogram).
 function route() {
-  const m = /^#\/jobs\/(\d+)$/.exec(location.hash);
+  const m = /^#\/jobs\/(\d+)(?:\/frames\/(-?\d+))?$/.exec(location.hash);
   const job = m ? Number(m[1]) : null;
-  if (job !== view.job) {
-    view.selectedFrame = null;
+  const frame = m && m[2] !== undefined ? Number(m[2]) : null;
+  if (job !== view.job || frame !== view.selectedFrame) {
     $("histogram-panel").hidden = true;
-    $("log").hidden = true;
     $("frames").dataset.key = "";
+    view.histogramShown = null;
   }
+  if (job !== view.job) $("log").hidden = true;
   view.job = job;
+  view.selectedFrame = frame;
   $("job-view").hidden = job === null;
   $("jobs-view").hidden = job !== null;
 }

@@ -54,31 +54,45 @@ std::string ramp_exr(const fs::path& dir) {
 
 class MonitorBrowser : public ServerTest {
  protected:
-  // Requests the server answered 200, not counting this call's own.
-  int64_t answered_ok() {
+  // Answers (200) the server gave since start() to anyone but this test:
+  // the browser's requests. Each request of the test is counted in own_.
+  int64_t browser_answers() {
     auto r = client().Get("/metrics", sub());
-    if (!r) return -1;
     std::smatch m;
     static const std::regex ok(R"re(vesper_http_requests_total\{code="200"\} (\d+))re");
-    if (!std::regex_search(r->body, m, ok)) return -1;
-    return std::stoll(m[1]) - ++metrics_calls_ + 1;
+    const std::string body = r ? r->body : "";
+    const int64_t n = std::regex_search(body, m, ok) ? std::stoll(m[1]) : -1;
+    // This request is counted from the next reading on (counted as it is answered).
+    return n - own_++;
   }
-  // The fake worker: once the page has polled (page, script, styles, jobs,
-  // workers), renders the job's tasks one after the other, a few hundred
-  // milliseconds each, so the page sees them finish.
-  void work_when_watched(int64_t baseline, const std::string& worker, const std::string& result,
-                         int tasks) {
+  // Waits (up to 60 s) until the browser has had `n` answers in all.
+  void wait_for_browser(int64_t n) {
     const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (answered_ok() < baseline + 5 && std::chrono::steady_clock::now() < give_up)
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    while (browser_answers() < n && std::chrono::steady_clock::now() < give_up)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  // The fake worker, stepped by the page's polls (not by the clock, since
+  // the browser runs the page in virtual time): once the page has loaded and
+  // polled (page, script, styles, jobs, workers), pauses the job until the
+  // page has polled twice more, resumes it, and renders its tasks.
+  void work_while_watched(int64_t job_id, const std::string& worker, const std::string& result,
+                          int tasks) {
+    wait_for_browser(5);
+    const std::string job = "/jobs/" + std::to_string(job_id);
+    post_ok(job + "/pause", json::object(), sub());
+    ++own_;
+    wait_for_browser(browser_answers() + 4);
+    post_ok(job + "/resume", json::object(), sub());
+    ++own_;
     for (int i = 0; i < tasks; ++i) {
       const json l = lease(worker);
+      ++own_;
       if (!l.contains("lease_id")) return;
-      std::this_thread::sleep_for(std::chrono::milliseconds(400));
       post_ok("/complete", {{"lease_id", l.at("lease_id")}, {"result", result}}, wrk());
+      ++own_;
     }
   }
-  int64_t metrics_calls_ = 0;
+  int64_t own_ = 0;
 };
 
 TEST_F(MonitorBrowser, ChromiumWatchesAJobFinishWithoutConsoleErrors) {
@@ -95,10 +109,10 @@ TEST_F(MonitorBrowser, ChromiumWatchesAJobFinishWithoutConsoleErrors) {
   const fs::path artifacts = fs::path(VESPER_TEST_ARTIFACT_DIR);
   fs::create_directories(artifacts);
 
-  const int64_t baseline = answered_ok();
-  std::thread fake([&] { work_when_watched(baseline, worker, result, kTasks); });
-  // Virtual time runs the page's 2 s polls without waiting for them; the
-  // fetches themselves take real time, long enough for the fake worker.
+  own_ = browser_answers() + 1;  // everything so far (this reading included) was the test's
+  std::thread fake([&] { work_while_watched(job, worker, result, kTasks); });
+  // Virtual time runs the page's 2 s polls back to back (600 s of them); the
+  // fake worker steps along with them.
   test::BrowserRun live = test::start_chromium(chromium, server_->url() + "/", dir_, "live",
                                                {"--virtual-time-budget=600000"});
   const auto code = live.process->wait_for(180);
@@ -107,26 +121,35 @@ TEST_F(MonitorBrowser, ChromiumWatchesAJobFinishWithoutConsoleErrors) {
   EXPECT_EQ(test::console_lines(read_text(live.log)), std::vector<std::string>{});
   const std::string dom = read_text(live.dom);
   EXPECT_NE(dom.find("data-job=\"" + std::to_string(job) + "\""), std::string::npos) << dom;
+  EXPECT_NE(dom.find("<section id=\"login\" hidden"), std::string::npos) << "read-only: no login";
   std::smatch observed;
   ASSERT_TRUE(std::regex_search(dom, observed, std::regex("data-observed=\"([^\"]*)\"")))
       << dom.substr(0, 2000);
   const std::string seen = observed[1];
   const std::string id = std::to_string(job);
+  // The job as it was, then paused: seen live, without a reload.
   EXPECT_NE(seen.find(id + ":active:0/4"), std::string::npos) << seen;
-  EXPECT_NE(seen.find(":4/4"), std::string::npos) << "the page saw the job finish: " << seen;
+  EXPECT_NE(seen.find(id + ":paused:0/4"), std::string::npos) << seen;
+  std::cout << "the page saw: " << seen << std::endl;
 
-  // The job page, finished: thumbnails of its frames; a screenshot for a human.
+  // The job page, finished: thumbnails of its frames, frame 2's histogram; a
+  // screenshot for a human.
   const fs::path screenshot = artifacts / "monitor-screenshot.png";
   test::BrowserRun page =
-      test::start_chromium(chromium, server_->url() + "/#/jobs/" + id, dir_, "job",
+      test::start_chromium(chromium, server_->url() + "/#/jobs/" + id + "/frames/2", dir_, "job",
                            {"--window-size=1400,1000", "--screenshot=" + screenshot.string(),
                             "--virtual-time-budget=5000"});
   ASSERT_EQ(page.process->wait_for(120), 0) << read_text(page.log);
   EXPECT_EQ(test::console_lines(read_text(page.log)), std::vector<std::string>{});
   const std::string job_dom = read_text(page.dom);
   EXPECT_NE(job_dom.find("data-view=\"job\""), std::string::npos);
+  EXPECT_NE(job_dom.find("4/4 · 100 %"), std::string::npos) << "finished";
   EXPECT_NE(job_dom.find("/frames/1/thumbnail"), std::string::npos);
   EXPECT_NE(job_dom.find("/frames/4/thumbnail"), std::string::npos);
+  EXPECT_NE(job_dom.find(">render-node-1<"), std::string::npos) << "tasks name their worker";
+  // The histogram of frame 2, drawn: its pixel count lands on the canvas.
+  EXPECT_NE(job_dom.find("data-count=\"57600\""), std::string::npos)
+      << "320 x 180 pixels: " << job_dom;
   ASSERT_TRUE(fs::is_regular_file(screenshot));
   EXPECT_GT(fs::file_size(screenshot), 10000u);
   std::cout << "screenshot: " << screenshot.string() << std::endl;
