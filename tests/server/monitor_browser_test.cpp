@@ -113,8 +113,10 @@ TEST_F(MonitorBrowser, ChromiumWatchesAJobFinishWithoutConsoleErrors) {
   std::thread fake([&] { work_while_watched(job, worker, result, kTasks); });
   // Virtual time runs the page's 2 s polls back to back (600 s of them); the
   // fake worker steps along with them.
-  test::BrowserRun live = test::start_chromium(chromium, server_->url() + "/", dir_, "live",
-                                               {"--virtual-time-budget=600000"});
+  test::BrowserRun live =
+      test::start_chromium(chromium, server_->url() + "/", dir_, "live",
+                           {"--virtual-time-budget=600000", "--window-size=1400,700",
+                            "--screenshot=" + (artifacts / "monitor-jobs.png").string()});
   const auto code = live.process->wait_for(180);
   fake.join();
   ASSERT_EQ(code, 0) << read_text(live.log);

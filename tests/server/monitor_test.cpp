@@ -15,6 +15,7 @@
 
 #include "renderer/output/exr_io.h"
 #include "server/frame_views.h"
+#include "server/tokens.h"
 #include "tests/server/server_fixture.h"
 
 namespace fs = std::filesystem;
@@ -134,6 +135,18 @@ TEST_F(MonitorTest, TheSessionCookieWorksForReadsAndJobActions) {
   auto out = client().Post("/api/v1/logout", "{}", "application/json");
   ASSERT_TRUE(out);
   EXPECT_NE(out->get_header_value("Set-Cookie").find("Max-Age=0"), std::string::npos);
+}
+
+TEST_F(MonitorTest, ReplacingTheSubmitterTokenEndsEverySession) {
+  start();
+  const std::string c = session();
+  EXPECT_EQ(status_of(client().Get("/api/v1/jobs", cookie(c, false))), 200);
+  const fs::path file = dir_ / "data" / "tokens.json";
+  Tokens tokens = read_tokens(file);
+  tokens.submitter = std::string(64, 'a');
+  write_tokens(file, tokens);
+  EXPECT_EQ(status_of(client().Get("/api/v1/jobs", cookie(c, false))), 401);
+  EXPECT_EQ(status_of(client().Get("/api/v1/jobs", auth(std::string(64, 'a')))), 200);
 }
 
 TEST_F(MonitorTest, ReadOnlyViewingNeedsNoTokenButActionsDo) {
