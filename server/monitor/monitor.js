@@ -164,8 +164,13 @@ async function act(job, name) {
     notice("");
     if (name === "delete" && view.job === job.id) location.hash = "#/";
   } catch (e) {
-    if (e instanceof AuthError) notice(`${name}: log in with the submitter token to act on jobs`);
-    else notice(`${name} job ${job.id}: ${e.message}`);
+    if (e instanceof AuthError) {
+      // A read-only view (`monitor_read_only`): acting needs the login.
+      notice(`${name}: log in with the submitter token to act on jobs`);
+      $("login-button").hidden = false;
+    } else {
+      notice(`${name} job ${job.id}: ${e.message}`);
+    }
   }
   poll();
 }
