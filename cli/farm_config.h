@@ -24,6 +24,7 @@ struct FarmServerSettings {
   // Renderer builds (sha256) whose results later identical jobs may reuse,
   // besides the server's own build.
   std::vector<std::string> trusted_renderers;
+  double blob_grace_seconds = 3600;  // an upload no job references yet survives GC this long
 };
 
 struct FarmWorkerSettings {
@@ -33,6 +34,7 @@ struct FarmWorkerSettings {
   double idle_backoff_min = 0.2, idle_backoff_max = 5.0;
   int render_threads = 0;
   double kill_grace_seconds = 2.0;
+  int64_t cache_max_bytes = int64_t(10) << 30;  // blob cache cap, LRU eviction
 };
 
 struct FarmJobSettings {

@@ -21,6 +21,7 @@ ServerConfig server_config(const FarmSettings& s) {
   c.idle_timeout = s.server.idle_timeout;
   c.task_timeout = s.server.task_timeout;
   c.trusted_renderers = s.server.trusted_renderers;
+  c.blob_grace_seconds = s.server.blob_grace_seconds;
   return c;
 }
 
@@ -33,6 +34,7 @@ WorkerConfig worker_config(const FarmSettings& s) {
   c.idle_backoff_max = s.worker.idle_backoff_max;
   c.render_threads = s.worker.render_threads;
   c.kill_grace_seconds = s.worker.kill_grace_seconds;
+  c.cache_max_bytes = s.worker.cache_max_bytes;
   return c;
 }
 

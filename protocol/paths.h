@@ -33,6 +33,9 @@ inline constexpr std::string_view kHeartbeat = "/heartbeat";
 inline constexpr std::string_view kComplete = "/complete";
 inline constexpr std::string_view kFail = "/fail";
 inline constexpr std::string_view kBlob = "/blobs/{sha256}";
+// ops16: a worker's goodbye when it stops cleanly; prune offline and lost workers.
+inline constexpr std::string_view kWorkerGoodbye = "/workers/goodbye";
+inline constexpr std::string_view kWorkersPrune = "/workers/prune";
 }  // namespace paths
 
 // The query parameter of POST /jobs that validates without creating ("1" or "true").

@@ -3,7 +3,7 @@
 namespace vesper::protocol {
 
 namespace {
-constexpr std::string_view kMethods[] = {"GET", "HEAD", "POST", "PUT"};           // by Method
+constexpr std::string_view kMethods[] = {"GET", "HEAD", "POST", "PUT", "DELETE"};  // by Method
 constexpr std::string_view kRoles[] = {"none", "submitter", "worker", "either"};  // by Role
 }  // namespace
 

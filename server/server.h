@@ -71,6 +71,9 @@ struct ServerConfig {
   // Trust this server's own executable's build too (the `vesper` binary that
   // workers of the same installation run).
   bool trust_own_build = true;
+  // Seconds a blob uploaded but not yet referenced by any job (a client
+  // uploads before it submits) survives garbage collection.
+  double blob_grace_seconds = 3600;
 };
 
 class Server {
