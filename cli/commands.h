@@ -158,8 +158,8 @@ int run_submit(const SubmitCommandOptions& options);
 struct JobCommandOptions {
   FarmOptions farm;
   std::optional<long long> job;
-  std::string output_dir;  // fetch
-  bool json = false;       // status: the server's JSON
+  std::string output_dir;     // fetch
+  bool json = false;          // status: the server's JSON
   bool prune = false;         // workers: remove offline and lost ones
   bool cancel_first = false;  // delete: cancel an active job first
 };

@@ -157,7 +157,8 @@ int prune_workers(FarmClient& c) {
   const auto r = c.post_json(std::string(protocol::paths::kWorkersPrune), nlohmann::json::object())
                      .get<protocol::PruneResponse>();
   std::printf("pruned %zu offline or lost worker(s)\n", r.pruned.size());
-  for (const std::string& id : r.pruned) std::printf("  %s\n", escape_control_characters(id).c_str());
+  for (const std::string& id : r.pruned)
+    std::printf("  %s\n", escape_control_characters(id).c_str());
   return 0;
 }
 }  // namespace

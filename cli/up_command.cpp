@@ -196,9 +196,10 @@ int fetch_after_interrupt(const UpPlan& plan, FarmClient& client, int64_t job) {
   spdlog::warn("interrupted: {}; fetched {} finished frame(s) into {}; missing frames: {}",
                describe_job(client.get_job(job)), f.written.size(), plan.out_dir.string(),
                missing.empty() ? "none" : missing);
-  spdlog::warn("the job is kept in {} (`vesper server --data-dir {}` serves it, `vesper fetch` "
-               "gets its frames)",
-               plan.data_dir.string(), plan.data_dir.string());
+  spdlog::warn(
+      "the job is kept in {} (`vesper server --data-dir {}` serves it, `vesper fetch` "
+      "gets its frames)",
+      plan.data_dir.string(), plan.data_dir.string());
   return 130;
 }
 

@@ -50,9 +50,10 @@ JobStore::DeleteResult JobStore::delete_job(int64_t id, JobSummary* busy) {
 }
 
 std::vector<std::string> JobStore::referenced_blobs() const {
-  sql::Stmt s(impl_->db,
-              "SELECT scene FROM jobs UNION SELECT blob FROM job_assets "
-              "UNION SELECT result FROM tasks WHERE result != '' UNION SELECT blob FROM frame_outputs");
+  sql::Stmt s(
+      impl_->db,
+      "SELECT scene FROM jobs UNION SELECT blob FROM job_assets "
+      "UNION SELECT result FROM tasks WHERE result != '' UNION SELECT blob FROM frame_outputs");
   std::vector<std::string> out;
   while (s.step()) out.push_back(s.text(0));
   return out;

@@ -35,7 +35,8 @@ BlobStore::BlobStore(fs::path root) : root_(std::move(root)) {
       fs::permissions(e.path(), fs::perms::owner_read | fs::perms::owner_write,
                       fs::perm_options::replace);
     // Pending from its mtime until the server claims what jobs reference.
-    const std::string hash = e.path().parent_path().filename().string() + e.path().filename().string();
+    const std::string hash =
+        e.path().parent_path().filename().string() + e.path().filename().string();
     const auto mtime = std::chrono::file_clock::to_sys(e.last_write_time());
     if (is_sha256_hex(hash))
       pending_[hash] = std::chrono::duration<double>(mtime.time_since_epoch()).count();
@@ -43,8 +44,7 @@ BlobStore::BlobStore(fs::path root) : root_(std::move(root)) {
 }
 
 double BlobStore::now() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
 void BlobStore::mark_pending(const std::string& hash) const {

@@ -164,9 +164,9 @@ struct HttpApi::Impl {
                                       " bytes exceeds the limit of " + std::to_string(limit) +
                                       " bytes"),
               {}};
-    return {std::nullopt, [this, found, params = std::move(params), query = h.query,
-                           head = h.method == "HEAD",
-                           what = h.method + " " + h.path](const std::string& body) {
+    return {std::nullopt,
+            [this, found, params = std::move(params), query = h.query, head = h.method == "HEAD",
+             what = h.method + " " + h.path](const std::string& body) {
               try {
                 return found->handler(ApiRequest{body, params, query, head});
               } catch (const ApiError& e) {

@@ -256,7 +256,8 @@ void Worker::Impl::keep_cache_under_cap(const protocol::LeaseResponse& l) {
     mark_used(asset_cache_file(cfg.cache_dir, a.blob));
   }
   const Evicted e = evict_lru(cfg.cache_dir, std::uintmax_t(cfg.cache_max_bytes), in_use);
-  if (e.blobs) spdlog::info("worker: cache over its cap: evicted {} blobs ({} bytes)", e.blobs, e.bytes);
+  if (e.blobs)
+    spdlog::info("worker: cache over its cap: evicted {} blobs ({} bytes)", e.blobs, e.bytes);
 }
 
 // The scene and its assets, from the verified cache, in a task directory.

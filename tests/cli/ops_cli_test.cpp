@@ -140,10 +140,10 @@ TEST_F(OpsCliTest, DryRunLeavesTheBlobDirUnchanged) {
 TEST_F(OpsCliTest, CtrlCOnUpFetchesTheFramesAlreadyDone) {
   const auto scene = write_scene(48, 48, 8);
   const fs::path data = dir_ / "up-data", frames = dir_ / "up-frames";
-  BackgroundProcess up({VESPER_BINARY, "up", "--scene", scene.string(), "--frames", "1-40",
-                        "--workers", "1", "--no-comp", "--data-dir", data.string(), "-o",
-                        frames.string()},
-                       dir_ / "up.out", dir_ / "up.log");
+  BackgroundProcess up(
+      {VESPER_BINARY, "up", "--scene", scene.string(), "--frames", "1-40", "--workers", "1",
+       "--no-comp", "--data-dir", data.string(), "-o", frames.string()},
+      dir_ / "up.out", dir_ / "up.log");
   const std::regex url_line(R"(http://127\.0\.0\.1:(\d+))");
   std::smatch m;
   std::string log;
