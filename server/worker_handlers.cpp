@@ -56,8 +56,10 @@ ApiResponse list(const WorkerHandlerDeps& d, const ApiRequest&) {
   protocol::WorkerList out;
   out.now = d.clock.now();
   for (const WorkerInfo& w : d.workers.list()) {
-    protocol::WorkerInfo info{w.id, w.name, w.registered, w.last_seen, leases[w.id]};
-    info.state = to_string(worker_state(w, out.now, d.lease_seconds));
+    protocol::WorkerInfo info{w.id,         w.name,
+                              w.registered, w.last_seen,
+                              leases[w.id], to_string(worker_state(w, out.now, d.lease_seconds)),
+                              {},           {}};
     if (auto it = tasks.find(w.id); it != tasks.end())
       info.current_task = protocol::WorkerTask{it->second.first, it->second.second};
     info.blocklisted_for = blocked[w.id];

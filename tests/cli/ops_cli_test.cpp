@@ -33,7 +33,8 @@ class OpsCliTest : public FarmTest {
     return r.exit_code == 0 ? json::parse(r.out) : json();
   }
   std::string state_of(const std::string& name) {
-    for (const json& w : workers_json().value("workers", json::array()))
+    const json all = workers_json();
+    for (const json& w : all.value("workers", json::array()))
       if (w.at("name") == name) return w.value("state", "");
     return "";
   }
@@ -115,7 +116,9 @@ TEST_F(OpsCliTest, DeletingSixTinyJobsFreesExactlyTheirBlobs) {
     blobs += std::stoll(m[1]);
     // The shared scene and mesh stay until the last job goes.
     EXPECT_EQ(blob_files().size(), before.size() - blobs) << r.err;
-    if (i + 1 < jobs.size()) EXPECT_EQ(std::stoll(m[1]), 1) << r.err;
+    if (i + 1 < jobs.size()) {
+      EXPECT_EQ(std::stoll(m[1]), 1) << r.err;
+    }
   }
   EXPECT_TRUE(blob_files().empty());
   EXPECT_EQ(blobs, int64_t(before.size()));
@@ -159,7 +162,8 @@ TEST_F(OpsCliTest, CtrlCOnUpFetchesTheFramesAlreadyDone) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     auto r = c.Get("/api/v1/jobs/1/frames");
     if (!r || r->status != 200) continue;
-    for (const json& f : json::parse(r->body).at("frames")) done = done || f.at("state") == "ready";
+    const json frames_now = json::parse(r->body);
+    for (const json& f : frames_now.at("frames")) done = done || f.at("state") == "ready";
   }
   ASSERT_TRUE(done) << slurp(dir_ / "up.log");
   up.signal(SIGINT);

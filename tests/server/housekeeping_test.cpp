@@ -35,7 +35,8 @@ class HousekeepingTest : public ServerTest {
     post_ok("/complete", {{"lease_id", l.at("lease_id")}, {"result", put_blob(result)}}, wrk());
   }
   json worker_entry(const std::string& id) {
-    for (const json& w : get_ok("/workers").at("workers"))
+    const json all = get_ok("/workers");
+    for (const json& w : all.at("workers"))
       if (w.at("worker_id") == id) return w;
     return {};
   }
