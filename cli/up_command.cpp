@@ -191,8 +191,7 @@ int fetch_after_interrupt(const UpPlan& plan, FarmClient& client, int64_t job) {
   const FetchedFrames f = fetch_frames(client, job, plan.out_dir);
   for (const auto& p : f.written) std::printf("%s\n", p.string().c_str());
   std::fflush(stdout);
-  std::string missing;
-  for (int m : f.missing) missing += (missing.empty() ? "" : ",") + std::to_string(m);
+  const std::string missing = format_frame_list(f.missing);
   spdlog::warn("interrupted: {}; fetched {} finished frame(s) into {}; missing frames: {}",
                describe_job(client.get_job(job)), f.written.size(), plan.out_dir.string(),
                missing.empty() ? "none" : missing);

@@ -182,7 +182,8 @@ TEST_F(OpsCliTest, CtrlCOnUpFetchesTheFramesAlreadyDone) {
   EXPECT_NE(err.find(fmt::format("fetched {} finished frame(s)", written.size())),
             std::string::npos)
       << err;
-  EXPECT_NE(err.find("missing frames: "), std::string::npos) << err;
+  EXPECT_NE(err.find(fmt::format("missing frames: {}-40", written.size() + 1)), std::string::npos)
+      << err;
   EXPECT_EQ(err.find("missing frames: none"), std::string::npos) << err;
 }
 
