@@ -86,6 +86,8 @@ BlobStore::Freed BlobStore::collect(const std::vector<std::string>& referenced,
       freed.bytes += size_error ? 0 : int64_t(size);
     }
   }
+  // Marks past the grace protect nothing any more (nor do referenced blobs need one).
+  std::erase_if(pending_, [&](const auto& p) { return p.second <= cutoff; });
   return freed;
 }
 
