@@ -10,6 +10,7 @@
 #include "cli/fetch.h"
 #include "cli/job_watch.h"
 #include "common/control_characters.h"
+#include "jobs/frame_range.h"
 #include "protocol/job_messages.h"
 #include "protocol/ops_messages.h"
 #include "protocol/paths.h"
@@ -217,9 +218,8 @@ int run_fetch(const JobCommandOptions& o) {
     const FetchedFrames f = fetch_frames(c, *o.job, o.output_dir);
     for (const auto& p : f.written) std::printf("%s\n", p.string().c_str());
     if (!f.missing.empty()) {
-      std::string list;
-      for (int m : f.missing) list += (list.empty() ? "" : ",") + std::to_string(m);
-      spdlog::warn("job {}: frames not ready (pending or failed): {}", *o.job, list);
+      spdlog::warn("job {}: frames not ready (pending or failed): {}", *o.job,
+                   format_frame_list(f.missing));
       return 3;
     }
     return 0;
