@@ -19,9 +19,9 @@ using nlohmann::json;
 
 class OpsCliTest : public FarmTest {
  protected:
-  // write_config's settings (2 s leases) and no grace for unreferenced blobs.
-  fs::path ops_config() {
-    const fs::path p = write_config();
+  // write_config's settings and no grace for unreferenced blobs.
+  fs::path ops_config(double lease_seconds = 2) {
+    const fs::path p = write_config(lease_seconds);
     std::string text = slurp(p);
     text.insert(text.find("[worker]"), "blob_grace_seconds = 0\n");
     std::ofstream(p) << text;
@@ -57,7 +57,7 @@ class OpsCliTest : public FarmTest {
 };
 
 TEST_F(OpsCliTest, StoppedWorkerIsOfflineKilledOneLostAndPruneKeepsTheOnlineOne) {
-  const auto config = ops_config();
+  const auto config = ops_config(4);  // time to see the killed one online first
   start_server(config);
   start_worker("stays", config);
   BackgroundProcess& stopped = start_worker("stopped", config);
@@ -71,7 +71,7 @@ TEST_F(OpsCliTest, StoppedWorkerIsOfflineKilledOneLostAndPruneKeepsTheOnlineOne)
   killed.signal(SIGKILL);  // no goodbye: online until the lease time passes
   ASSERT_TRUE(killed.wait_for(10));
   EXPECT_EQ(state_of("killed"), "online");
-  EXPECT_TRUE(wait_state("killed", "lost", 10));
+  EXPECT_TRUE(wait_state("killed", "lost", 15));
   EXPECT_EQ(state_of("stays"), "online");
   const RunResult table = farm("workers");
   EXPECT_NE(table.out.find("offline"), std::string::npos) << table.out;
