@@ -155,11 +155,15 @@ std::string blocklisted_for(const protocol::WorkerInfo& w) {
 }
 
 int prune_workers(FarmClient& c) {
+  const auto names = worker_names(c);  // before they go
   const auto r = c.post_json(std::string(protocol::paths::kWorkersPrune), nlohmann::json::object())
                      .get<protocol::PruneResponse>();
   std::printf("pruned %zu offline or lost worker(s)\n", r.pruned.size());
-  for (const std::string& id : r.pruned)
-    std::printf("  %s\n", escape_control_characters(id).c_str());
+  for (const std::string& id : r.pruned) {
+    const auto it = names.find(id);
+    std::printf("  %s %s\n", it == names.end() ? "?" : it->second.c_str(),
+                escape_control_characters(id).c_str());
+  }
   return 0;
 }
 }  // namespace

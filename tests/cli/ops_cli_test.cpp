@@ -80,6 +80,8 @@ TEST_F(OpsCliTest, StoppedWorkerIsOfflineKilledOneLostAndPruneKeepsTheOnlineOne)
   const RunResult prune = farm("workers --prune");
   EXPECT_EQ(prune.exit_code, 0) << prune.err;
   EXPECT_NE(prune.out.find("pruned 2 offline or lost worker(s)"), std::string::npos) << prune.out;
+  EXPECT_NE(prune.out.find("  stopped "), std::string::npos) << prune.out;
+  EXPECT_NE(prune.out.find("  killed "), std::string::npos) << prune.out;
   const json left = workers_json().at("workers");
   ASSERT_EQ(left.size(), 1u) << left.dump();
   EXPECT_EQ(left[0].at("name"), "stays");
