@@ -23,7 +23,8 @@ namespace {
 }
 }  // namespace
 
-BlobStore::BlobStore(fs::path root) : root_(std::move(root)) {
+BlobStore::BlobStore(fs::path root, double grace_seconds) : root_(std::move(root)) {
+  const double cutoff = now() - grace_seconds;
   fs::create_directories(root_ / "tmp");
   // Temp files of puts interrupted by a crash are garbage.
   for (const auto& e : fs::directory_iterator(root_ / "tmp")) fs::remove(e.path());
@@ -38,8 +39,8 @@ BlobStore::BlobStore(fs::path root) : root_(std::move(root)) {
     const std::string hash =
         e.path().parent_path().filename().string() + e.path().filename().string();
     const auto mtime = std::chrono::file_clock::to_sys(e.last_write_time());
-    if (is_sha256_hex(hash))
-      pending_[hash] = std::chrono::duration<double>(mtime.time_since_epoch()).count();
+    const double put = std::chrono::duration<double>(mtime.time_since_epoch()).count();
+    if (put > cutoff && is_sha256_hex(hash)) pending_[hash] = put;
   }
 }
 

@@ -8,7 +8,8 @@
 // before they submit, so a blob put and not yet claimed by a job (its
 // submit, its task's completion, its merged frame) is "pending" and kept for
 // a grace period. Pending times live in memory; at start every stored blob
-// is pending from its file's mtime until the server claims the referenced ones.
+// younger than the grace is pending from its file's mtime until the server
+// claims the referenced ones.
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -22,7 +23,9 @@ namespace vesper {
 
 class BlobStore {
  public:
-  explicit BlobStore(std::filesystem::path root);
+  // `grace_seconds`: how long an unclaimed blob is pending (collect's
+  // grace); at start only blobs younger than that are marked.
+  explicit BlobStore(std::filesystem::path root, double grace_seconds = 3600);
 
   // Throws ApiError 400 for a malformed hash (anything but [0-9a-f]{64}),
   // 422 when the bytes do not hash to `hash`. Returns true when the blob was

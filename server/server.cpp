@@ -86,7 +86,7 @@ struct Server::Impl {
   explicit Impl(ServerConfig c)
       : config(prepare(std::move(c))),
         tokens(config.data_dir / "tokens.json"),
-        blobs(config.data_dir / "blobs"),
+        blobs(config.data_dir / "blobs", config.blob_grace_seconds),
         trusted(trusted_renderers(config)),
         expectations(blobs),
         workers(config.data_dir / "workers.json"),

@@ -110,6 +110,18 @@ TEST_F(HousekeepingTest, UnreferencedUploadSurvivesWithinTheGrace) {
   EXPECT_FALSE(fs::exists(blob_file(fresh)));
 }
 
+// Pending marks live in memory: after a restart a blob is pending from its
+// file's mtime, so a fresh upload still survives; a job's blobs do not wait.
+TEST_F(HousekeepingTest, ARestartKeepsAFreshUploadPending) {
+  start(config_with_grace(3600));
+  const std::string fresh = put_blob("uploaded before the restart");
+  const int64_t job = submit(1);
+  post_ok("/jobs/" + std::to_string(job) + "/cancel", json::object(), sub());
+  start(config_with_grace(3600));
+  EXPECT_EQ(del_ok("/jobs/" + std::to_string(job)).at("blobs_freed"), 1);  // its scene
+  EXPECT_TRUE(fs::exists(blob_file(fresh)));
+}
+
 TEST_F(HousekeepingTest, HeadMarksAStoredBlobPendingAgain) {
   start(config_with_grace(3600));
   const int64_t job = submit(1);
