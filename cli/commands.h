@@ -158,8 +158,10 @@ int run_submit(const SubmitCommandOptions& options);
 struct JobCommandOptions {
   FarmOptions farm;
   std::optional<long long> job;
-  std::string output_dir;  // fetch
-  bool json = false;       // status: the server's JSON
+  std::string output_dir;     // fetch
+  bool json = false;          // status: the server's JSON
+  bool prune = false;         // workers: remove offline and lost ones
+  bool cancel_first = false;  // delete: cancel an active job first
 };
 int run_status(const JobCommandOptions& options);
 int run_cancel(const JobCommandOptions& options);
@@ -169,6 +171,7 @@ int run_workers(const JobCommandOptions& options);
 int run_retry(const JobCommandOptions& options);
 int run_logs(const JobCommandOptions& options);
 int run_fetch(const JobCommandOptions& options);
+int run_delete(const JobCommandOptions& options);
 
 // vesper regress: re-render a suite, compare with goldens without alarms
 // for Monte Carlo noise, report (docs/regression.md). Exit 0 nothing

@@ -116,6 +116,10 @@ nlohmann::json FarmClient::post_json(const std::string& path, const nlohmann::js
   return parse_answer("POST " + path, http_->post_json(protocol::api(path), body.dump()));
 }
 
+nlohmann::json FarmClient::delete_json(const std::string& path) {
+  return parse_answer("DELETE " + path, http_->del(protocol::api(path)));
+}
+
 std::string FarmClient::get_text(const std::string& path) {
   const auto r = http_->get(protocol::api(path));
   if (!r.ok()) throw FarmClientError(describe("GET " + path, r));

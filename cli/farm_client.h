@@ -50,6 +50,7 @@ class FarmClient {
   nlohmann::json get_json(const std::string& path);
   nlohmann::json post_json(const std::string& path, const nlohmann::json& body);
   std::string get_text(const std::string& path);
+  nlohmann::json delete_json(const std::string& path);
   // GET /jobs/{id} with every page of its task list (protocol::kTasksAfterParam)
   // joined into one answer: the JSON, and as protocol::JobDetail.
   nlohmann::json get_job_json(int64_t job);

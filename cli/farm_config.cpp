@@ -33,6 +33,17 @@ Setter integer(int& out, long long lo, long long hi) {
   };
 }
 
+Setter bytes(int64_t& out, int64_t lo) {
+  return [&out, lo](const toml::node& n) {
+    if (!n.is_integer()) throw std::invalid_argument("expected an integer (bytes)");
+    const int64_t v = *n.value<int64_t>();
+    if (v < lo)
+      throw std::invalid_argument("expected at least " + std::to_string(lo) + " bytes, got " +
+                                  std::to_string(v));
+    out = v;
+  };
+}
+
 Setter number(double& out, double lo, double hi) {
   return [&out, lo, hi](const toml::node& n) {
     if (!n.is_number()) throw std::invalid_argument("expected a number");
@@ -83,7 +94,8 @@ std::map<std::string, std::map<std::string, Setter>> setters(FarmSettings& s) {
         {"idle_timeout", number(s.server.idle_timeout, 0.1, 3600)},
         {"task_timeout", number(s.server.task_timeout, 0, 30 * 86400)},
         {"trusted_renderers", sha256_list(s.server.trusted_renderers)},
-        {"monitor_read_only", boolean(s.server.monitor_read_only)}}},
+        {"monitor_read_only", boolean(s.server.monitor_read_only)},
+        {"blob_grace_seconds", number(s.server.blob_grace_seconds, 0, 365 * 86400.0)}}},
       {"worker",
        {{"server", str(s.worker.server)},
         {"cache_dir", str(s.worker.cache_dir)},
@@ -91,7 +103,8 @@ std::map<std::string, std::map<std::string, Setter>> setters(FarmSettings& s) {
         {"idle_backoff_min", number(s.worker.idle_backoff_min, 0.001, 3600)},
         {"idle_backoff_max", number(s.worker.idle_backoff_max, 0.001, 3600)},
         {"render_threads", integer(s.worker.render_threads, 0, 4096)},
-        {"kill_grace_seconds", number(s.worker.kill_grace_seconds, 0, 3600)}}},
+        {"kill_grace_seconds", number(s.worker.kill_grace_seconds, 0, 3600)},
+        {"cache_max_bytes", bytes(s.worker.cache_max_bytes, 1 << 20)}}},
       {"job",
        {{"frames", str(s.job.frames)},
         {"spp", integer(s.job.spp, 0, 1 << 20)},

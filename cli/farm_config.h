@@ -26,6 +26,7 @@ struct FarmServerSettings {
   std::vector<std::string> trusted_renderers;
   // The browser monitor's reads without a token (a wall screen on a trusted network).
   bool monitor_read_only = false;
+  double blob_grace_seconds = 3600;  // an upload no job references yet survives GC this long
 };
 
 struct FarmWorkerSettings {
@@ -35,6 +36,7 @@ struct FarmWorkerSettings {
   double idle_backoff_min = 0.2, idle_backoff_max = 5.0;
   int render_threads = 0;
   double kill_grace_seconds = 2.0;
+  int64_t cache_max_bytes = int64_t(10) << 30;  // blob cache cap, LRU eviction
 };
 
 struct FarmJobSettings {

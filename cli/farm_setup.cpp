@@ -22,6 +22,7 @@ ServerConfig server_config(const FarmSettings& s) {
   c.task_timeout = s.server.task_timeout;
   c.trusted_renderers = s.server.trusted_renderers;
   c.monitor_read_only = s.server.monitor_read_only;
+  c.blob_grace_seconds = s.server.blob_grace_seconds;
   return c;
 }
 
@@ -34,6 +35,7 @@ WorkerConfig worker_config(const FarmSettings& s) {
   c.idle_backoff_max = s.worker.idle_backoff_max;
   c.render_threads = s.worker.render_threads;
   c.kill_grace_seconds = s.worker.kill_grace_seconds;
+  c.cache_max_bytes = s.worker.cache_max_bytes;
   return c;
 }
 

@@ -1,5 +1,6 @@
 // vesper status | cancel | retry | logs | fetch: a job on the farm.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -9,7 +10,9 @@
 #include "cli/fetch.h"
 #include "cli/job_watch.h"
 #include "common/control_characters.h"
+#include "jobs/frame_range.h"
 #include "protocol/job_messages.h"
+#include "protocol/ops_messages.h"
 #include "protocol/paths.h"
 
 namespace vesper::cli {
@@ -140,8 +143,34 @@ int run_resume(const JobCommandOptions& o) {
   return job_action(o, protocol::JobAction::Resume, "resumed");
 }
 
+namespace {
+// "job 3 task 17", or "-" for an idle worker.
+std::string current_task(const protocol::WorkerInfo& w) {
+  if (!w.current_task) return "-";
+  return fmt::format("job {} task {}", w.current_task->job, w.current_task->task);
+}
+
+std::string blocklisted_for(const protocol::WorkerInfo& w) {
+  return w.blocklisted_for.empty() ? "-" : fmt::format("{}", fmt::join(w.blocklisted_for, ","));
+}
+
+int prune_workers(FarmClient& c) {
+  const auto names = worker_names(c);  // before they go
+  const auto r = c.post_json(std::string(protocol::paths::kWorkersPrune), nlohmann::json::object())
+                     .get<protocol::PruneResponse>();
+  std::printf("pruned %zu offline or lost worker(s)\n", r.pruned.size());
+  for (const std::string& id : r.pruned) {
+    const auto it = names.find(id);
+    std::printf("  %s %s\n", it == names.end() ? "?" : it->second.c_str(),
+                escape_control_characters(id).c_str());
+  }
+  return 0;
+}
+}  // namespace
+
 int run_workers(const JobCommandOptions& o) {
   return with_client(o, [&](FarmClient& c) {
+    if (o.prune) return prune_workers(c);
     const nlohmann::json answer = c.get_json(kWorkersPath);
     if (o.json) {
       std::printf("%s\n", answer.dump(2).c_str());
@@ -151,10 +180,14 @@ int run_workers(const JobCommandOptions& o) {
     if (all.workers.empty())
       std::printf("no workers\n");
     else
-      std::printf("%-24s %-34s %12s %7s\n", "name", "worker id", "last seen", "leases");
+      std::printf("%-24s %-34s %-8s %12s  %-22s %s\n", "name", "worker id", "state", "last seen",
+                  "current task", "blocked for jobs");
     for (const protocol::WorkerInfo& w : all.workers)
-      std::printf("%-24s %-34s %10.0fs ago %7d\n", escape_control_characters(w.name).c_str(),
-                  escape_control_characters(w.worker_id).c_str(), all.now - w.last_seen, w.leases);
+      std::printf("%-24s %-34s %-8s %10.0fs ago  %-22s %s\n",
+                  escape_control_characters(w.name).c_str(),
+                  escape_control_characters(w.worker_id).c_str(),
+                  escape_control_characters(w.state.empty() ? "?" : w.state).c_str(),
+                  all.now - w.last_seen, current_task(w).c_str(), blocklisted_for(w).c_str());
     return 0;
   });
 }
@@ -189,11 +222,26 @@ int run_fetch(const JobCommandOptions& o) {
     const FetchedFrames f = fetch_frames(c, *o.job, o.output_dir);
     for (const auto& p : f.written) std::printf("%s\n", p.string().c_str());
     if (!f.missing.empty()) {
-      std::string list;
-      for (int m : f.missing) list += (list.empty() ? "" : ",") + std::to_string(m);
-      spdlog::warn("job {}: frames not ready (pending or failed): {}", *o.job, list);
+      spdlog::warn("job {}: frames not ready (pending or failed): {}", *o.job,
+                   format_frame_list(f.missing));
       return 3;
     }
+    return 0;
+  });
+}
+
+}  // namespace vesper::cli
+
+namespace vesper::cli {
+
+// Deletes a finished (or, with --cancel, any) job; the server frees the
+// blobs no remaining job references.
+int run_delete(const JobCommandOptions& o) {
+  return with_client(o, [&](FarmClient& c) {
+    if (o.cancel_first) post_action(c, *o.job, protocol::JobAction::Cancel);
+    const auto r = c.delete_json(protocol::job_path(*o.job)).get<protocol::DeleteJobResponse>();
+    spdlog::info("deleted job {}: {} blob(s) freed, {:.1f} MB", r.deleted, r.blobs_freed,
+                 double(r.bytes_freed) / 1e6);
     return 0;
   });
 }

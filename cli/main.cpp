@@ -334,6 +334,10 @@ void add_job_commands(CLI::App& app, Dispatch& dispatch) {
   auto* wl =
       add_job("workers", "Workers registered with the farm, and what they run", false, run_workers);
   wl->add_flag("--json", o->json, "Print the server's JSON");
+  wl->add_flag("--prune", o->prune, "Remove offline and lost workers (says how many)");
+  auto* de = add_job("delete", "Delete a finished job; frees the blobs no other job uses", true,
+                     run_delete);
+  de->add_flag("--cancel", o->cancel_first, "Cancel the job first if it is still active");
   add_job("retry", "Requeue a job's failed tasks (and clear its blocklist)", true, run_retry);
   add_job("logs", "Failure logs of a job's tasks", true, run_logs);
   auto* fe =

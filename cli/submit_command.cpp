@@ -12,6 +12,7 @@
 #include "cli/submit.h"
 #include "common/json_parse.h"
 #include "common/json_reader.h"
+#include "common/sha256.h"
 #include "jobs/frame_range.h"
 #include "protocol/fields.h"
 #include "protocol/job_messages.h"
@@ -30,6 +31,18 @@ struct TempFile {
     std::filesystem::remove(path, ec);
   }
 };
+
+// Uploads the packed scene (through a temp file) and returns its hash.
+std::string upload_scene(FarmClient& client, const std::string& json) {
+  TempFile tmp{std::filesystem::temp_directory_path() /
+               ("vesper-submit-" + std::to_string(::getpid()) + ".json")};
+  {
+    std::ofstream out(tmp.path, std::ios::binary);
+    out << json;
+    if (!out.flush()) throw FarmClientError(tmp.path.string() + ": cannot write");
+  }
+  return client.put_blob(tmp.path);
+}
 
 }  // namespace
 
@@ -93,20 +106,15 @@ Submitted submit_job(FarmClient& client, const JobRequest& request, bool dry_run
   const PackedScene packed = pack_scene(r.scene);
 
   protocol::SubmitRequest body;
+  // A dry run uploads nothing: the blobs are named by their local hashes
+  // (the server checks the request without them).
   for (const PackedAsset& a : packed.assets) {
-    const std::string sha = client.put_blob(a.local);
+    const std::string sha = dry_run ? a.sha256 : client.put_blob(a.local);
     if (sha != a.sha256)
       throw FarmClientError(a.local.string() + ": changed while it was being submitted");
     body.assets.push_back({a.name, sha});
   }
-  TempFile tmp{std::filesystem::temp_directory_path() /
-               ("vesper-submit-" + std::to_string(::getpid()) + ".json")};
-  {
-    std::ofstream out(tmp.path, std::ios::binary);
-    out << packed.json;
-    if (!out.flush()) throw FarmClientError(tmp.path.string() + ": cannot write");
-  }
-  body.scene = client.put_blob(tmp.path);
+  body.scene = dry_run ? sha256_hex(packed.json) : upload_scene(client, packed.json);
   body.name = r.name;
   body.frames = r.frames;
   body.spp = r.spp;

@@ -184,6 +184,24 @@ void cancel_leftover_jobs(FarmClient& client, const std::filesystem::path& data_
     }
 }
 
+// Ctrl-C: the frames already done are fetched (and printed, one path a
+// line) before `up` exits 130 saying which are missing. A second Ctrl-C
+// stops at once (exit_on_second_signal).
+int fetch_after_interrupt(const UpPlan& plan, FarmClient& client, int64_t job) {
+  const FetchedFrames f = fetch_frames(client, job, plan.out_dir);
+  for (const auto& p : f.written) std::printf("%s\n", p.string().c_str());
+  std::fflush(stdout);
+  const std::string missing = format_frame_list(f.missing);
+  spdlog::warn("interrupted: {}; fetched {} finished frame(s) into {}; missing frames: {}",
+               describe_job(client.get_job(job)), f.written.size(), plan.out_dir.string(),
+               missing.empty() ? "none" : missing);
+  spdlog::warn(
+      "the job is kept in {} (`vesper server --data-dir {}` serves it, `vesper fetch` "
+      "gets its frames)",
+      plan.data_dir.string(), plan.data_dir.string());
+  return 130;
+}
+
 // Submits, waits (progress bar), stops the workers, fetches. Returns the exit
 // code: 0, 3 (frames missing), 130 (interrupted); throws on other failures.
 int submit_wait_fetch(const UpPlan& plan, Server& server, LocalWorkers& workers,
@@ -197,13 +215,7 @@ int submit_wait_fetch(const UpPlan& plan, Server& server, LocalWorkers& workers,
   workers.hide_info();
   wait_for_job(client, s.id, true, [] { return g_stop.load(); });
   workers.stop();
-  if (g_stop) {
-    spdlog::warn(
-        "interrupted: {}; kept in {} (`vesper server --data-dir {}` serves it, "
-        "`vesper fetch` gets its frames)",
-        describe_job(client.get_job(s.id)), plan.data_dir.string(), plan.data_dir.string());
-    return 130;
-  }
+  if (g_stop) return fetch_after_interrupt(plan, client, s.id);
   fetched = fetch_frames(client, s.id, plan.out_dir);  // waits for the merges
   // After the merges: the job with the noise its frames reached.
   const auto finished = client.get_job(s.id);

@@ -61,4 +61,17 @@ std::vector<int> parse_frame_range(const std::string& text) {
   return frames;
 }
 
+std::string format_frame_list(const std::vector<int>& frames) {
+  std::string out;
+  for (size_t i = 0; i < frames.size();) {
+    size_t j = i;
+    while (j + 1 < frames.size() && (long long)frames[j + 1] == (long long)frames[j] + 1) ++j;
+    if (!out.empty()) out += ",";
+    out += std::to_string(frames[i]);
+    if (j > i) out += "-" + std::to_string(frames[j]);
+    i = j + 1;
+  }
+  return out;
+}
+
 }  // namespace vesper

@@ -114,6 +114,17 @@ class JobStore {
   // changes nothing). Throws StoreError if the frame has no output.
   void record_frame_noise(int64_t job, int frame, const FrameNoise& noise);
 
+  // Housekeeping (housekeeping.cpp). Deletes a job that has no task queued
+  // or leased, with every row that belongs to it (or to its tasks) in any
+  // table. Deleted: true; NotFound: no such job; Busy: it has work queued or
+  // running (`busy`, if given, gets its summary).
+  enum class DeleteResult { Deleted, NotFound, Busy };
+  DeleteResult delete_job(int64_t job, JobSummary* busy = nullptr);
+  // Every blob a job references: scenes, assets, task results, frame outputs.
+  std::vector<std::string> referenced_blobs() const;
+  // (worker id, job) for each job a worker is blocked for, by worker then job.
+  std::vector<std::pair<std::string, int64_t>> blocklists() const;
+
   // While one lives, every read of this JobStore sees one consistent state
   // (a read transaction; in WAL mode writers on other connections go on).
   // For a second, read-only JobStore on the same file: the server answers

@@ -86,6 +86,14 @@ inline constexpr const char* kTask = "task";
 inline constexpr const char* kAnswer = "answer";
 inline constexpr const char* kLog = "log";
 
+// Worker states, job deletion (ops16)
+inline constexpr const char* kCurrentTask = "current_task";
+inline constexpr const char* kBlocklistedFor = "blocklisted_for";
+inline constexpr const char* kDeleted = "deleted";
+inline constexpr const char* kBlobsFreed = "blobs_freed";
+inline constexpr const char* kBytesFreed = "bytes_freed";
+inline constexpr const char* kPruned = "pruned";
+
 // Blobs
 inline constexpr const char* kSha256 = "sha256";
 inline constexpr const char* kSize = "size";

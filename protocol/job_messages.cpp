@@ -77,7 +77,12 @@ VESPER_JSON_FIELDS(WorkerInfo, required(f::kWorkerId, &WorkerInfo::worker_id),
                    required(f::kName, &WorkerInfo::name),
                    required(f::kRegistered, &WorkerInfo::registered),
                    required(f::kLastSeen, &WorkerInfo::last_seen),
-                   required(f::kLeases, &WorkerInfo::leases))
+                   required(f::kLeases, &WorkerInfo::leases),
+                   optional(f::kState, &WorkerInfo::state),
+                   optional(f::kCurrentTask, &WorkerInfo::current_task),
+                   optional(f::kBlocklistedFor, &WorkerInfo::blocklisted_for))
+VESPER_JSON_FIELDS(WorkerTask, required(f::kJob, &WorkerTask::job),
+                   required(f::kTask, &WorkerTask::task))
 VESPER_JSON_FIELDS(WorkerList, required(f::kWorkers, &WorkerList::workers),
                    required(f::kNow, &WorkerList::now))
 VESPER_JSON_FIELDS(BlobStored, required(f::kSha256, &BlobStored::sha256),

@@ -124,6 +124,13 @@ struct FrameList {
   std::vector<FrameInfo> frames;
 };
 
+// The task a worker holds a live lease on.
+struct WorkerTask {
+  int64_t job = 0;
+  int64_t task = 0;
+  bool operator==(const WorkerTask&) const = default;
+};
+
 // A worker in GET /workers.
 struct WorkerInfo {
   std::string worker_id;
@@ -131,6 +138,10 @@ struct WorkerInfo {
   double registered = 0;  // the server's clock, seconds
   double last_seen = 0;
   int leases = 0;  // live leases this server process knows of
+  // "online" | "offline" | "lost" (docs/farm.md, "Worker states").
+  std::string state;
+  std::optional<WorkerTask> current_task;  // left out when idle
+  std::vector<int64_t> blocklisted_for;    // job ids; left out when none
 };
 
 struct WorkerList {
@@ -156,6 +167,7 @@ VESPER_JSON_CONVERSIONS(JobActionResponse);
 VESPER_JSON_CONVERSIONS(FrameState);
 VESPER_JSON_CONVERSIONS(FrameInfo);
 VESPER_JSON_CONVERSIONS(FrameList);
+VESPER_JSON_CONVERSIONS(WorkerTask);
 VESPER_JSON_CONVERSIONS(WorkerInfo);
 VESPER_JSON_CONVERSIONS(WorkerList);
 VESPER_JSON_CONVERSIONS(BlobStored);

@@ -41,6 +41,9 @@ inline constexpr std::string_view kLogin = "/login";
 inline constexpr std::string_view kLogout = "/logout";
 inline constexpr std::string_view kFrameThumbnail = "/jobs/{id}/frames/{frame}/thumbnail";
 inline constexpr std::string_view kFrameHistogram = "/jobs/{id}/frames/{frame}/histogram";
+// ops16: a worker's goodbye when it stops cleanly; prune offline and lost workers.
+inline constexpr std::string_view kWorkerGoodbye = "/workers/goodbye";
+inline constexpr std::string_view kWorkersPrune = "/workers/prune";
 }  // namespace paths
 
 // The query parameter of POST /jobs that validates without creating ("1" or "true").

@@ -3,8 +3,8 @@
 namespace vesper::protocol {
 
 namespace {
-constexpr std::string_view kMethods[] = {"GET", "HEAD", "POST", "PUT"};           // by Method
-constexpr std::string_view kRoles[] = {"none", "submitter", "worker", "either"};  // by Role
+constexpr std::string_view kMethods[] = {"GET", "HEAD", "POST", "PUT", "DELETE"};  // by Method
+constexpr std::string_view kRoles[] = {"none", "submitter", "worker", "either"};   // by Role
 }  // namespace
 
 std::string_view to_string(Method m) { return kMethods[size_t(m)]; }

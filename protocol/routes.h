@@ -11,7 +11,7 @@
 
 namespace vesper::protocol {
 
-enum class Method { Get, Head, Post, Put };
+enum class Method { Get, Head, Post, Put, Delete };
 std::string_view to_string(Method m);  // "GET", ...
 
 // The bearer token a route needs (server/README.md, "Auth").
@@ -48,6 +48,10 @@ enum class Endpoint {
   Logout,
   FrameThumbnail,
   FrameHistogram,
+  // Operations on the farm's own records (issue 16, ops16).
+  DeleteJob,
+  WorkerGoodbye,
+  PruneWorkers,
 };
 
 // Where a route's path lives: under kApiPrefix or at the server's root.
@@ -96,6 +100,10 @@ inline constexpr std::array kRoutes{
     Route{Endpoint::Logout,         Method::Post, Scope::Api,  paths::kLogout,          Role::None},
     Route{Endpoint::FrameThumbnail, Method::Get,  Scope::Api,  paths::kFrameThumbnail,  Role::Submitter},
     Route{Endpoint::FrameHistogram, Method::Get,  Scope::Api,  paths::kFrameHistogram,  Role::Submitter},
+    // ops16: delete a job (and collect its blobs), workers' goodbye and prune.
+    Route{Endpoint::DeleteJob,      Method::Delete, Scope::Api, paths::kJob,            Role::Submitter},
+    Route{Endpoint::WorkerGoodbye,  Method::Post, Scope::Api,  paths::kWorkerGoodbye,   Role::Worker},
+    Route{Endpoint::PruneWorkers,   Method::Post, Scope::Api,  paths::kWorkersPrune,    Role::Submitter},
 };
 // clang-format on
 

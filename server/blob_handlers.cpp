@@ -16,6 +16,9 @@ ApiResponse put(BlobStore& blobs, const ApiRequest& req) {
 
 ApiResponse get(const BlobStore& blobs, const ApiRequest& req) {
   const std::string& hash = req.params.at(0);
+  // A client asks before it uploads, and submits without uploading what the
+  // server has: that blob is pending for it like an upload (garbage collection).
+  if (req.head) blobs.mark_pending(hash);
   const auto file = blobs.file(hash);
   const auto size = blobs.size(hash);
   if (!file || !size) throw ApiError(404, "no blob " + hash);

@@ -4,7 +4,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
+#include <set>
 #include <system_error>
 
 #include "common/secret_token.h"
@@ -21,16 +23,73 @@ namespace {
 }
 }  // namespace
 
-BlobStore::BlobStore(fs::path root) : root_(std::move(root)) {
+BlobStore::BlobStore(fs::path root, double grace_seconds) : root_(std::move(root)) {
+  const double cutoff = now() - grace_seconds;
   fs::create_directories(root_ / "tmp");
   // Temp files of puts interrupted by a crash are garbage.
   for (const auto& e : fs::directory_iterator(root_ / "tmp")) fs::remove(e.path());
   // Blobs of an older server were readable by everyone (0644): private now.
   const fs::perms others = fs::perms::group_all | fs::perms::others_all;
-  for (const auto& e : fs::recursive_directory_iterator(root_))
-    if (e.is_regular_file() && (e.status().permissions() & others) != fs::perms::none)
+  for (const auto& e : fs::recursive_directory_iterator(root_)) {
+    if (!e.is_regular_file()) continue;
+    if ((e.status().permissions() & others) != fs::perms::none)
       fs::permissions(e.path(), fs::perms::owner_read | fs::perms::owner_write,
                       fs::perm_options::replace);
+    // Pending from its mtime until the server claims what jobs reference.
+    const std::string hash =
+        e.path().parent_path().filename().string() + e.path().filename().string();
+    const auto mtime = std::chrono::file_clock::to_sys(e.last_write_time());
+    const double put = std::chrono::duration<double>(mtime.time_since_epoch()).count();
+    if (put > cutoff && is_sha256_hex(hash)) pending_[hash] = put;
+  }
+}
+
+double BlobStore::now() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+void BlobStore::mark_pending(const std::string& hash) const {
+  if (is_sha256_hex(hash) && exists(hash)) mark_pending(hash, now());
+}
+
+void BlobStore::mark_pending(const std::string& hash, double at) const {
+  std::lock_guard lock(pending_mutex_);
+  pending_[hash] = at;
+}
+
+void BlobStore::claim(const std::vector<std::string>& hashes, double since) const {
+  std::lock_guard lock(pending_mutex_);
+  for (const std::string& h : hashes) {
+    auto it = pending_.find(h);
+    if (it != pending_.end() && it->second <= since) pending_.erase(it);
+  }
+}
+
+BlobStore::Freed BlobStore::collect(const std::vector<std::string>& referenced,
+                                    double grace_seconds) {
+  const std::set<std::string> keep(referenced.begin(), referenced.end());
+  const double cutoff = now() - grace_seconds;
+  Freed freed;
+  std::lock_guard lock(pending_mutex_);
+  for (const auto& dir : fs::directory_iterator(root_)) {
+    const std::string prefix = dir.path().filename().string();
+    if (!dir.is_directory() || prefix.size() != 2) continue;  // tmp/
+    for (const auto& e : fs::directory_iterator(dir.path())) {
+      const std::string hash = prefix + e.path().filename().string();
+      if (!e.is_regular_file() || !is_sha256_hex(hash) || keep.count(hash)) continue;
+      const auto p = pending_.find(hash);
+      if (p != pending_.end() && p->second > cutoff) continue;
+      std::error_code size_error, remove_error;
+      const auto size = e.file_size(size_error);
+      if (!fs::remove(e.path(), remove_error)) continue;
+      if (p != pending_.end()) pending_.erase(p);
+      ++freed.blobs;
+      freed.bytes += size_error ? 0 : int64_t(size);
+    }
+  }
+  // Marks past the grace protect nothing any more (nor do referenced blobs need one).
+  std::erase_if(pending_, [&](const auto& p) { return p.second <= cutoff; });
+  return freed;
 }
 
 fs::path BlobStore::path_of(const std::string& hash) const {
@@ -60,6 +119,7 @@ bool BlobStore::put(const std::string& hash, std::string_view bytes) {
   const std::string actual = sha256_hex(bytes);
   if (actual != hash)
     throw ApiError(422, "blob content does not match its name: the body's SHA-256 is " + actual);
+  mark_pending(hash, now());  // a client may submit a job with it next
   if (fs::exists(final_path)) return false;
   fs::create_directories(final_path.parent_path());
   const fs::path tmp = root_ / "tmp" / (hash + "." + random_hex(8));

@@ -82,5 +82,17 @@ void add_ops_handlers(HandlerTable& table, const OpsHandlerDeps& deps);
 // session cookie out; server/monitor_auth.h) and POST /logout.
 // monitor_handlers.cpp
 void add_monitor_handlers(HandlerTable& table, TokenFile& tokens);
+// Housekeeping (submitter token, goodbye: worker token): DELETE a job and
+// collect the blobs no job references; a worker's goodbye; prune offline and
+// lost workers. housekeeping_handlers.cpp
+struct HousekeepingHandlerDeps {
+  LockedStore& store;
+  BlobStore& blobs;
+  WorkerRegistry& workers;
+  ServerClock& clock;
+  double lease_seconds;
+  double blob_grace_seconds;  // an unclaimed upload is kept this long
+};
+void add_housekeeping_handlers(HandlerTable& table, const HousekeepingHandlerDeps& deps);
 
 }  // namespace vesper

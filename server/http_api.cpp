@@ -95,6 +95,7 @@ std::optional<Method> route_method(const std::string& method) {
   if (method == "GET" || method == "HEAD") return Method::Get;
   if (method == "POST") return Method::Post;
   if (method == "PUT") return Method::Put;
+  if (method == "DELETE") return Method::Delete;
   return std::nullopt;
 }
 
@@ -192,10 +193,11 @@ struct HttpApi::Impl {
                                       " bytes exceeds the limit of " + std::to_string(limit) +
                                       " bytes"),
               {}};
-    return {std::nullopt, [this, found, params = std::move(params), query = h.query,
-                           what = h.method + " " + h.path](const std::string& body) {
+    return {std::nullopt,
+            [this, found, params = std::move(params), query = h.query, head = h.method == "HEAD",
+             what = h.method + " " + h.path](const std::string& body) {
               try {
-                return found->handler(ApiRequest{body, params, query});
+                return found->handler(ApiRequest{body, params, query, head});
               } catch (const ApiError& e) {
                 return error_with_path(e.status(), e.what(), e.path());
               } catch (const std::exception& e) {

@@ -22,6 +22,7 @@ struct ApiRequest {
   const std::string& body;
   std::vector<std::string> params;                // path parameters, in template order
   std::multimap<std::string, std::string> query;  // ?key=value
+  bool head = false;                              // a HEAD request (answered by its GET route)
 
   // The query value of `key`, or "" when it is absent.
   std::string query_value(const std::string& key) const;

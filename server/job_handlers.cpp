@@ -71,20 +71,43 @@ void refuse_outside_references(const BlobStore& blobs, const std::string& scene)
                    std::string("/") + protocol::field::kScene);
 }
 
-ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
-  const JobSpec spec = read_job_request(req.body);
+// A submitted job's scene and assets are referenced now: no longer pending
+// uploads (server/blob_store.h, garbage collection).
+void claim_inputs(const BlobStore& blobs, const JobSpec& spec, double since) {
+  std::vector<std::string> inputs{spec.scene};
+  for (const auto& a : spec.assets) inputs.push_back(a.blob);
+  blobs.claim(inputs, since);
+}
+
+// The scene and asset blobs the job names must have been uploaded.
+void require_blobs(const BlobStore& blobs, const JobSpec& spec) {
   namespace f = protocol::field;
-  if (!d.blobs.exists(spec.scene)) missing_blob(spec.scene, "", std::string("/") + f::kScene);
+  if (!blobs.exists(spec.scene)) missing_blob(spec.scene, "", std::string("/") + f::kScene);
   for (size_t i = 0; i < spec.assets.size(); ++i)
-    if (!d.blobs.exists(spec.assets[i].blob))
+    if (!blobs.exists(spec.assets[i].blob))
       missing_blob(spec.assets[i].blob, " for asset '" + spec.assets[i].name + "'",
                    std::string("/") + f::kAssets + "/" + std::to_string(i) + "/" + f::kBlob);
+}
+
+ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
+  const JobSpec spec = read_job_request(req.body);
+  const std::string dry = req.query_value(std::string(protocol::kDryRunParam));
+  const bool dry_run = dry == "1" || dry == "true";
+  // A dry run needs no blobs (`vesper submit --dry-run` uploads nothing); a
+  // scene the server has is still checked for references outside its directory.
+  if (!dry_run) require_blobs(d.blobs, spec);  // again below, under the lock
   refuse_outside_references(d.blobs, spec.scene);
   const int64_t n = task_count(spec);
-  const std::string dry = req.query_value(std::string(protocol::kDryRunParam));
-  if (dry == "1" || dry == "true")
+  if (dry_run)
     return json_response(200, protocol::DryRunResponse{spec.name, int64_t(spec.frames.size()), n});
-  const int64_t id = d.store.with([&](JobStore& s) { return s.submit(spec, d.clock.now()); });
+  const double uploaded_before = BlobStore::now();
+  // Under the store's lock, as garbage collection runs: no blob checked here
+  // is collected before the job references it.
+  const int64_t id = d.store.with([&](JobStore& s) {
+    require_blobs(d.blobs, spec);
+    return s.submit(spec, d.clock.now());
+  });
+  claim_inputs(d.blobs, spec, uploaded_before);
   spdlog::info("job {} '{}' submitted: {} frames, {} tasks", id, spec.name, spec.frames.size(), n);
   ApiResponse res = json_response(201, protocol::SubmitResponse{id, n});
   res.headers.emplace_back("Location", protocol::api(protocol::job_path(id)));

@@ -17,9 +17,9 @@ LeaseTracker::LeaseTracker(LockedStore& store, ServerClock& clock, WorkerRegistr
 LeaseTracker::~LeaseTracker() { stop_reaper(); }
 
 void LeaseTracker::granted(const std::string& lease_id, int64_t task_id,
-                           const std::string& worker_id, double expiry) {
+                           const std::string& worker_id, double expiry, int64_t job_id) {
   std::lock_guard lock(mutex_);
-  live_[lease_id] = Live{task_id, worker_id, expiry, 0};
+  live_[lease_id] = Live{task_id, job_id, worker_id, expiry, 0};
 }
 
 void LeaseTracker::note(const std::string& lease_id, double now, bool ended,
@@ -48,6 +48,13 @@ std::map<std::string, int> LeaseTracker::leases_by_worker() const {
   std::map<std::string, int> out;
   std::lock_guard lock(mutex_);
   for (const auto& [id, l] : live_) ++out[l.worker_id];
+  return out;
+}
+
+std::map<std::string, std::pair<int64_t, int64_t>> LeaseTracker::task_by_worker() const {
+  std::map<std::string, std::pair<int64_t, int64_t>> out;
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, l] : live_) out[l.worker_id] = {l.job_id, l.task_id};
   return out;
 }
 

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 
 namespace vesper {
 
@@ -28,7 +29,7 @@ class LeaseTracker {
   LeaseTracker& operator=(const LeaseTracker&) = delete;
 
   void granted(const std::string& lease_id, int64_t task_id, const std::string& worker_id,
-               double expiry);
+               double expiry, int64_t job_id = 0);
   // A call on a lease at `now`: extends it, keeps `progress`, touches its
   // worker's last-seen; forgets the lease when it `ended`. Unknown leases
   // (granted before a restart) are ignored.
@@ -37,6 +38,8 @@ class LeaseTracker {
 
   std::map<int64_t, double> progress_by_task() const;
   std::map<std::string, int> leases_by_worker() const;
+  // (job, task) of a live lease of each worker that holds one (one of them).
+  std::map<std::string, std::pair<int64_t, int64_t>> task_by_worker() const;
 
   // Requeues expired leases every `interval` seconds on a background thread.
   void start_reaper(double interval);
@@ -45,6 +48,7 @@ class LeaseTracker {
  private:
   struct Live {
     int64_t task_id = 0;
+    int64_t job_id = 0;
     std::string worker_id;
     double expiry = 0;
     double progress = 0;

@@ -213,6 +213,13 @@ protocol::RegisterRequest read_register_request(const std::string& body) {
   });
 }
 
+protocol::GoodbyeRequest read_goodbye_request(const std::string& body) {
+  return read_body(body, [](JsonReader& o) {
+    o.allow_keys({f::kWorkerId});
+    return protocol::GoodbyeRequest{required(o, f::kWorkerId).as_string()};
+  });
+}
+
 protocol::LeaseRequest read_lease_request(const std::string& body) {
   return read_body(body, [](JsonReader& o) {
     o.allow_keys({f::kWorkerId, f::kRenderer});

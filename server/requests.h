@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "jobs/job.h"
+#include "protocol/ops_messages.h"
 #include "protocol/worker_messages.h"
 
 namespace vesper {
@@ -54,5 +55,7 @@ protocol::LeaseRequest read_lease_request(const std::string& body);
 protocol::HeartbeatRequest read_heartbeat_request(const std::string& body);
 protocol::CompleteRequest read_complete_request(const std::string& body);
 protocol::FailRequest read_fail_request(const std::string& body);
+// POST /workers/goodbye: {"worker_id"}.
+protocol::GoodbyeRequest read_goodbye_request(const std::string& body);
 
 }  // namespace vesper

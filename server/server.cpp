@@ -40,6 +40,8 @@ ServerConfig prepare(ServerConfig c) {
   if (c.header_timeout <= 0 || c.idle_timeout <= 0 || c.io_timeout <= 0)
     throw std::invalid_argument(
         "server: header_timeout, idle_timeout and io_timeout must be positive");
+  if (c.blob_grace_seconds < 0)
+    throw std::invalid_argument("server: blob_grace_seconds must not be negative");
   if (c.max_header_bytes < 1024)
     throw std::invalid_argument("server: max_header_bytes must be at least 1024");
   return c;
@@ -86,7 +88,7 @@ struct Server::Impl {
   explicit Impl(ServerConfig c)
       : config(prepare(std::move(c))),
         tokens(config.data_dir / "tokens.json"),
-        blobs(config.data_dir / "blobs"),
+        blobs(config.data_dir / "blobs", config.blob_grace_seconds),
         trusted(trusted_renderers(config)),
         expectations(blobs),
         workers(config.data_dir / "workers.json"),
@@ -110,6 +112,8 @@ struct Server::Impl {
     add_blob_handlers(table, blobs);
     add_ops_handlers(table, {store, workers, counters});
     add_monitor_handlers(table, tokens);
+    add_housekeeping_handlers(
+        table, {store, blobs, workers, clock, config.lease_seconds, config.blob_grace_seconds});
     return table;
   }
 };
@@ -128,6 +132,8 @@ int Server::start() {
   if (const int renewed =
           s.store.with([&](JobStore& st) { return st.renew_leases(s.clock.now()); }))
     spdlog::info("renewed {} leases held before the restart", renewed);
+  // Blobs jobs reference are not pending uploads (server/blob_store.h).
+  s.blobs.claim(s.store.with([](JobStore& st) { return st.referenced_blobs(); }), BlobStore::now());
   s.bound_port = s.http.bind();
   s.http.serve();
   s.leases.start_reaper(s.config.reaper_interval > 0 ? s.config.reaper_interval

@@ -77,6 +77,9 @@ struct ServerConfig {
   // token, for a wall screen; its actions still need a login. Frames' EXRs
   // and blobs always need a token (server/monitor_auth.h).
   bool monitor_read_only = false;
+  // Seconds a blob uploaded but not yet referenced by any job (a client
+  // uploads before it submits) survives garbage collection.
+  double blob_grace_seconds = 3600;
 };
 
 class Server {

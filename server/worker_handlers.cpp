@@ -45,12 +45,26 @@ ApiResponse register_worker(const WorkerHandlerDeps& d, const ApiRequest& req) {
   return json_response(200, protocol::RegisterResponse{id});
 }
 
+// Each worker with its state (online, offline, lost), the task it holds a
+// live lease on and the jobs it is blocked for.
 ApiResponse list(const WorkerHandlerDeps& d, const ApiRequest&) {
   std::map<std::string, int> leases = d.leases.leases_by_worker();
+  const auto tasks = d.leases.task_by_worker();
+  std::map<std::string, std::vector<int64_t>> blocked;
+  for (const auto& [worker, job] : d.store.read([](const JobStore& s) { return s.blocklists(); }))
+    blocked[worker].push_back(job);
   protocol::WorkerList out;
-  for (const WorkerInfo& w : d.workers.list())
-    out.workers.push_back({w.id, w.name, w.registered, w.last_seen, leases[w.id]});
   out.now = d.clock.now();
+  for (const WorkerInfo& w : d.workers.list()) {
+    protocol::WorkerInfo info{w.id,         w.name,
+                              w.registered, w.last_seen,
+                              leases[w.id], to_string(worker_state(w, out.now, d.lease_seconds)),
+                              {},           {}};
+    if (auto it = tasks.find(w.id); it != tasks.end())
+      info.current_task = protocol::WorkerTask{it->second.first, it->second.second};
+    info.blocklisted_for = blocked[w.id];
+    out.workers.push_back(std::move(info));
+  }
   return json_response(200, out);
 }
 
@@ -80,7 +94,7 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
     return none;
   }
   d.counters.lease_granted();
-  d.leases.granted(l->lease_id, l->task.id, r.worker_id, l->expiry);
+  d.leases.granted(l->lease_id, l->task.id, r.worker_id, l->expiry, l->task.job_id);
   protocol::LeaseResponse out;
   out.lease_id = l->lease_id;
   out.expiry = l->expiry;
@@ -148,11 +162,13 @@ ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
   // Read before the completion, so a one-task frame is never seen done
   // without its noise (a partial is not an EXR: read as saying nothing).
   const FrameNoise noise = read_frame_noise(*result_file);
+  const double uploaded_before = BlobStore::now();
   const double t = d.clock.now();
   const bool done =
       d.store.with([&](JobStore& s) { return s.complete(r.lease_id, r.result, t, noise); });
   d.leases.note(r.lease_id, t, true);
   if (!done) stale(r.lease_id);
+  d.blobs.claim({r.result}, uploaded_before);  // the task references it now
   d.tasks_completed();  // the task may have finished a frame of several tasks
   return ok();
 }

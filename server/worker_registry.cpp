@@ -24,7 +24,8 @@ WorkerRegistry::WorkerRegistry(fs::path file) : file_(std::move(file)) {
     const nlohmann::json doc = nlohmann::json::parse(ss.str());
     for (const auto& w : doc.at("workers")) {
       WorkerInfo info{w.at("worker_id").get<std::string>(), w.at("name").get<std::string>(),
-                      w.at("registered").get<double>(), w.at("last_seen").get<double>()};
+                      w.at("registered").get<double>(), w.at("last_seen").get<double>(),
+                      w.value("said_goodbye", false)};
       workers_[info.id] = info;
     }
   } catch (const std::exception& e) {
@@ -38,7 +39,7 @@ std::string WorkerRegistry::add(const std::string& name, double now,
   auto known = workers_.find(previous_id);
   const std::string id = known != workers_.end() ? previous_id : random_hex(16);
   const double registered = known != workers_.end() ? known->second.registered : now;
-  workers_[id] = WorkerInfo{id, name, registered, now};
+  workers_[id] = WorkerInfo{id, name, registered, now, false};
   save_locked();
   return id;
 }
@@ -48,7 +49,52 @@ bool WorkerRegistry::touch(const std::string& id, double now) {
   auto it = workers_.find(id);
   if (it == workers_.end()) return false;
   it->second.last_seen = std::max(it->second.last_seen, now);
+  it->second.said_goodbye = false;
   return true;
+}
+
+bool WorkerRegistry::goodbye(const std::string& id, double now) {
+  std::lock_guard lock(mutex_);
+  auto it = workers_.find(id);
+  if (it == workers_.end()) return false;
+  it->second.last_seen = std::max(it->second.last_seen, now);
+  it->second.said_goodbye = true;
+  save_locked();
+  return true;
+}
+
+std::vector<std::string> WorkerRegistry::prune(double now, double lease_seconds) {
+  std::lock_guard lock(mutex_);
+  std::vector<std::string> gone;
+  for (auto it = workers_.begin(); it != workers_.end();) {
+    if (worker_state(it->second, now, lease_seconds) == WorkerState::Online) {
+      ++it;
+      continue;
+    }
+    gone.push_back(it->first);
+    it = workers_.erase(it);
+  }
+  if (!gone.empty()) save_locked();
+  return gone;
+}
+
+const char* to_string(WorkerState s) {
+  switch (s) {
+    case WorkerState::Online:
+      return "online";
+    case WorkerState::Offline:
+      return "offline";
+    case WorkerState::Lost:
+      return "lost";
+  }
+  return "lost";
+}
+
+WorkerState worker_state(const WorkerInfo& w, double now, double lease_seconds) {
+  if (w.said_goodbye) return WorkerState::Offline;
+  const double unseen = now - w.last_seen;
+  if (unseen <= lease_seconds) return WorkerState::Online;
+  return unseen > kWorkerGoneSeconds ? WorkerState::Offline : WorkerState::Lost;
 }
 
 std::optional<WorkerInfo> WorkerRegistry::find(const std::string& id) const {
@@ -78,7 +124,8 @@ void WorkerRegistry::save_locked() const {
     arr.push_back({{"worker_id", w.id},
                    {"name", w.name},
                    {"registered", w.registered},
-                   {"last_seen", w.last_seen}});
+                   {"last_seen", w.last_seen},
+                   {"said_goodbye", w.said_goodbye}});
   const std::string text = nlohmann::json{{"workers", arr}}.dump(2) + "\n";
   const fs::path tmp = file_.string() + ".tmp";
   {

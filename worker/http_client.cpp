@@ -98,6 +98,14 @@ HttpResponse HttpClient::head(const std::string& path) {
   return perform();
 }
 
+HttpResponse HttpClient::del(const std::string& path) {
+  Headers h;
+  h.add(auth_header_);
+  CURL* c = start(curl_, base_ + path, h);
+  curl_easy_setopt(c, CURLOPT_CUSTOMREQUEST, "DELETE");
+  return perform_to_string();
+}
+
 HttpResponse HttpClient::get(const std::string& path) {
   Headers h;
   h.add(auth_header_);

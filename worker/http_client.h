@@ -29,6 +29,7 @@ class HttpClient {
   HttpResponse get_to_file(const std::string& path, const std::filesystem::path& file);
   HttpResponse get(const std::string& path);
   HttpResponse head(const std::string& path);  // status only
+  HttpResponse del(const std::string& path);   // DELETE, the answer's body kept
 
  private:
   HttpResponse perform();

@@ -38,6 +38,10 @@ HttpResponse ServerApi::register_worker(const protocol::RegisterRequest& request
   return http_.post_json(protocol::api(paths::kWorkerRegister), body(request));
 }
 
+HttpResponse ServerApi::goodbye(const protocol::GoodbyeRequest& request) {
+  return http_.post_json(protocol::api(paths::kWorkerGoodbye), body(request));
+}
+
 HttpResponse ServerApi::lease(const protocol::LeaseRequest& request) {
   return http_.post_json(protocol::api(paths::kLease), body(request));
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "protocol/ops_messages.h"
 #include "protocol/worker_messages.h"
 #include "worker/http_client.h"
 
@@ -20,6 +21,7 @@ class ServerApi {
   ServerApi(const std::string& server_url, const std::string& token);
 
   HttpResponse register_worker(const protocol::RegisterRequest& request);
+  HttpResponse goodbye(const protocol::GoodbyeRequest& request);
   HttpResponse lease(const protocol::LeaseRequest& request);
   HttpResponse heartbeat(const protocol::HeartbeatRequest& request);
   HttpResponse fail(const protocol::FailRequest& request);

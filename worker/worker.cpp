@@ -9,12 +9,14 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <set>
 
 #include "common/sha256.h"
 #include "common/utf8.h"
 #include "protocol/worker_messages.h"
 #include "worker/backoff.h"
 #include "worker/blob_cache.h"
+#include "worker/cache_eviction.h"
 #include "worker/lease_retry.h"
 #include "worker/render_command.h"
 #include "worker/server_api.h"
@@ -83,8 +85,10 @@ struct Worker::Impl {
   bool start();
   WorkerState register_worker();
   WorkerState lease();
+  void say_goodbye();
   void work_on(const protocol::LeaseResponse& l);
   std::optional<fs::path> fetch(const protocol::LeaseResponse& l, LeaseRetry& retry);
+  void keep_cache_under_cap(const protocol::LeaseResponse& l);
   std::optional<fs::path> run(const protocol::LeaseResponse& l, const fs::path& task_dir,
                               double& seconds, LeaseRetry& retry);
   bool heartbeat(const protocol::LeaseResponse& l, double progress, LeaseRetry& retry);
@@ -116,6 +120,7 @@ int Worker::run() {
         state = impl_->lease();
         break;
       case WorkerState::Stopped:
+        impl_->say_goodbye();
         return 0;
       case WorkerState::Fatal:
         return 1;
@@ -180,6 +185,15 @@ WorkerState Worker::Impl::register_worker() {
   }
 }
 
+// A clean stop tells the server, which lists this worker "offline" rather
+// than "lost" (docs/farm.md, "Worker states"). Best effort: one try.
+void Worker::Impl::say_goodbye() {
+  const std::string id = self.worker_id();
+  if (id.empty()) return;
+  const HttpResponse r = api->goodbye({id});
+  if (r.status != 200) spdlog::warn("worker: goodbye not delivered ({})", describe(r));
+}
+
 // Asks for one task and works on it. 204 = no work (back off, or stop when
 // exit_when_idle), 404 = the server forgot us (register again), 401 = fatal.
 WorkerState Worker::Impl::lease() {
@@ -232,6 +246,20 @@ void Worker::Impl::work_on(const protocol::LeaseResponse& l) {
   upload_and_complete(l, *out, seconds, retry);
 }
 
+// Marks the task's blobs used now, then evicts the least recently used
+// others while the cache is over its cap.
+void Worker::Impl::keep_cache_under_cap(const protocol::LeaseResponse& l) {
+  std::set<std::string> in_use{l.scene};
+  mark_used(cfg.cache_dir / (l.scene + ".json"));
+  for (const protocol::AssetRef& a : l.assets) {
+    in_use.insert(a.blob);
+    mark_used(asset_cache_file(cfg.cache_dir, a.blob));
+  }
+  const Evicted e = evict_lru(cfg.cache_dir, std::uintmax_t(cfg.cache_max_bytes), in_use);
+  if (e.blobs)
+    spdlog::info("worker: cache over its cap: evicted {} blobs ({} bytes)", e.blobs, e.bytes);
+}
+
 // The scene and its assets, from the verified cache, in a task directory.
 std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l, LeaseRetry& retry) {
   BlobCache::Fetched got = cache->fetch(l.scene, cfg.cache_dir / (l.scene + ".json"), "scene",
@@ -244,6 +272,7 @@ std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l, Le
     return std::nullopt;
   }
   std::string problem = got.problem;
+  if (problem.empty()) keep_cache_under_cap(l);
   if (problem.empty()) {
     try {
       std::vector<Asset> assets;  // the job store's spelling of the lease's assets

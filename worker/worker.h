@@ -5,6 +5,7 @@
 // heartbeats with progress, uploads the EXR result and completes the task.
 // See worker/README.md for the protocol details.
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -25,6 +26,9 @@ struct WorkerConfig {
   bool exit_when_idle = false;  // return 0 at the first "no work" answer
   int render_threads = 0;       // --threads for the child render; 0 = renderer default (all cores)
   double kill_grace_seconds = 2;  // SIGTERM → SIGKILL delay when a render is dropped
+  // Cap of the blob cache (bytes): least recently used blobs are evicted
+  // beyond it, never the current task's (worker/cache_eviction.h).
+  std::int64_t cache_max_bytes = std::int64_t(10) << 30;
   // Send the renderer's sha256 with each lease, so the server may complete a
   // task with the result of an identical one this same renderer build already
   // rendered. Off for a renderer whose output the file's hash does not pin

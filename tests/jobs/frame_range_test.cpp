@@ -43,5 +43,14 @@ TEST(FrameRange, RangeSpanningTwoToThe31FramesIsRefused) {
   EXPECT_THROW(parse_frame_range("0-1000000"), FrameRangeError);
 }
 
+// `vesper up` and `fetch` name missing frames this way; it reads back.
+TEST(FrameRange, FormatListsRunsAsRanges) {
+  EXPECT_EQ(format_frame_list({}), "");
+  EXPECT_EQ(format_frame_list({5}), "5");
+  EXPECT_EQ(format_frame_list({1, 2, 3, 7, 9, 10}), "1-3,7,9-10");
+  const std::vector<int> frames{0, 4, 5, 6, 100, 101};
+  EXPECT_EQ(parse_frame_range(format_frame_list(frames)), frames);
+}
+
 }  // namespace
 }  // namespace vesper

@@ -214,9 +214,15 @@ TEST(JobMessagesTest, FramesWorkersActionsBlobsAndErrors) {
       {"frame": 2, "state": "failed", "tasks": 2, "done": 1, "error": "x"}]})"));
   EXPECT_EQ(round_trip(frames).frames.at(1).state, FrameState::Failed);
 
-  WorkerList workers{{{"w", "host", 1.0, 2.0, 1}}, 3.0};
+  WorkerList workers{{{"w", "host", 1.0, 2.0, 1, "lost", {}, {}}}, 3.0};
   EXPECT_EQ(json(workers), json::parse(R"({"workers": [{"worker_id": "w", "name": "host",
-      "registered": 1.0, "last_seen": 2.0, "leases": 1}], "now": 3.0})"));
+      "registered": 1.0, "last_seen": 2.0, "leases": 1, "state": "lost"}], "now": 3.0})"));
+  // A worker's current task and blocklist, left out above, come back as sent.
+  workers.workers[0].current_task = WorkerTask{7, 9};
+  workers.workers[0].blocklisted_for = {7, 8};
+  const WorkerList back = round_trip(workers);
+  EXPECT_EQ(back.workers.at(0).current_task, (WorkerTask{7, 9}));
+  EXPECT_EQ(back.workers.at(0).blocklisted_for, (std::vector<int64_t>{7, 8}));
 
   JobActionResponse a;
   a.job.id = 4;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "protocol/job_messages.h"
+#include "protocol/ops_messages.h"
 #include "protocol/routes.h"
 #include "protocol/worker_messages.h"
 
@@ -214,6 +215,18 @@ TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
   detail.tasks_next = 1;
   EXPECT_EQ(keys_of(nlohmann::json(detail)), properties(doc, "JobDetail", "JobSummary"));
   EXPECT_EQ(keys_of(nlohmann::json(detail.summary)), properties(doc, "JobSummary"));
+}
+
+// The housekeeping messages (ops16): a worker with its state, current task
+// and blocklist; job deletion; goodbye; prune.
+TEST(OpenApiTest, HousekeepingMessagesWriteTheKeysTheirSchemasDocument) {
+  const KeyTree doc = load_openapi();
+  WorkerInfo worker{"w", "host", 1, 2, 1, "online", WorkerTask{3, 4}, {3}};
+  EXPECT_EQ(keys_of(nlohmann::json(worker)), properties(doc, "Worker"));
+  EXPECT_EQ(keys_of(nlohmann::json(DeleteJobResponse{1, 2, 3})),
+            properties(doc, "DeleteJobResponse"));
+  EXPECT_EQ(keys_of(nlohmann::json(GoodbyeRequest{"w"})), properties(doc, "GoodbyeRequest"));
+  EXPECT_EQ(keys_of(nlohmann::json(PruneResponse{{"w"}})), properties(doc, "PruneResponse"));
 }
 
 TEST(OpenApiTest, TheKeyReaderFollowsIndentationListsAndBlockScalars) {

@@ -626,6 +626,11 @@ TEST_F(ServerTest, AssetsAreValidatedNamingTheJsonPath) {
       auto r = client().Post((std::string("/api/v1/jobs") + query).c_str(), sub(), body.dump(),
                              "application/json");
       ASSERT_TRUE(r);
+      // A dry run needs no uploaded blobs (`vesper submit --dry-run` uploads none).
+      if (*query && k.path == "/assets/3/blob") {
+        EXPECT_EQ(r->status, 200) << r->body;
+        continue;
+      }
       EXPECT_EQ(r->status, 400) << k.assets.dump() << query << ": " << r->body;
       const json e = json::parse(r->body);
       EXPECT_EQ(e.value("path", ""), k.path) << k.assets.dump() << ": " << r->body;
