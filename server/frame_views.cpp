@@ -113,6 +113,19 @@ fs::path FrameViews::cached(const fs::path& file, Make make) {
   return file;
 }
 
+int FrameViews::prune(const std::function<bool(const std::string&)>& stored) {
+  std::lock_guard lock(mutex_);
+  std::error_code ec;
+  int removed = 0;
+  for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::string blob = name.substr(0, name.find('.'));  // <blob>.png, <blob>.histogram.json
+    std::error_code remove_error;
+    if (!stored(blob) && fs::remove(it->path(), remove_error)) ++removed;
+  }
+  return removed;
+}
+
 fs::path FrameViews::thumbnail(const std::string& blob, const fs::path& exr) {
   return cached(dir_ / (blob + ".png"), [&](const fs::path& tmp) {
     // Averaged in linear light, then encoded: the thumbnail's greys are the frame's.

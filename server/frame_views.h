@@ -7,6 +7,7 @@
 // bytes, so a cached view is never stale) and kept in a cache directory;
 // requests for the same view wait for one computation.
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <string>
 
@@ -32,6 +33,9 @@ class FrameViews {
   // first if it is not there yet. Throws CompError when the EXR cannot be read.
   std::filesystem::path thumbnail(const std::string& blob, const std::filesystem::path& exr);
   std::filesystem::path histogram(const std::string& blob, const std::filesystem::path& exr);
+  // Removes the views of every blob `stored` says is gone (after blob GC);
+  // returns how many files went.
+  int prune(const std::function<bool(const std::string& blob)>& stored);
 
  private:
   template <class Make>

@@ -88,6 +88,7 @@ void add_monitor_handlers(HandlerTable& table, TokenFile& tokens);
 struct HousekeepingHandlerDeps {
   LockedStore& store;
   BlobStore& blobs;
+  FrameViews& views;  // the monitor's views of collected blobs go with them
   WorkerRegistry& workers;
   ServerClock& clock;
   double lease_seconds;

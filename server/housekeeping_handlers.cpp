@@ -4,11 +4,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/sha256.h"
 #include "common/utf8.h"
 #include "protocol/fields.h"
 #include "protocol/ops_messages.h"
 #include "server/api_error.h"
 #include "server/blob_store.h"
+#include "server/frame_views.h"
 #include "server/handlers.h"
 #include "server/locked_store.h"
 #include "server/requests.h"
@@ -44,6 +46,10 @@ ApiResponse delete_job(const HousekeepingHandlerDeps& d, const ApiRequest& req) 
   if (result == JobStore::DeleteResult::NotFound)
     throw ApiError(404, "no job " + std::to_string(id));
   if (result == JobStore::DeleteResult::Busy) busy(refused);
+  if (freed.blobs > 0) {
+    d.views.prune(
+        [&](const std::string& blob) { return is_sha256_hex(blob) && d.blobs.exists(blob); });
+  }
   spdlog::info("job {} deleted: {} blobs ({} bytes) freed", id, freed.blobs, freed.bytes);
   return json_response(200, protocol::DeleteJobResponse{id, freed.blobs, freed.bytes});
 }

@@ -113,7 +113,7 @@ struct Server::Impl {
     add_ops_handlers(table, {store, workers, counters});
     add_monitor_handlers(table, tokens);
     add_housekeeping_handlers(
-        table, {store, blobs, workers, clock, config.lease_seconds, config.blob_grace_seconds});
+        table, {store, blobs, views, workers, clock, config.lease_seconds, config.blob_grace_seconds});
     return table;
   }
 };

@@ -233,6 +233,28 @@ TEST_F(MonitorTest, AFinishedFrameHasAThumbnailAndAHistogram) {
             404);
 }
 
+TEST_F(MonitorTest, DeletingAJobTakesItsFramesViewsWithItsBlobs) {
+  ServerConfig c = config();
+  c.blob_grace_seconds = 0;  // collect at once what no job references
+  start(c);
+  const int64_t job = submit(1);
+  const std::string worker = register_worker("w");
+  const json l = lease(worker);
+  const std::string result = put_blob(two_tone_exr(dir_));
+  post_ok("/complete", {{"lease_id", l.at("lease_id")}, {"result", result}}, wrk());
+  const std::string frame = "/api/v1/jobs/" + std::to_string(job) + "/frames/1";
+  ASSERT_EQ(status_of(client().Get((frame + "/thumbnail").c_str(), sub())), 200);
+  ASSERT_EQ(status_of(client().Get((frame + "/histogram").c_str(), sub())), 200);
+  const fs::path cache = dir_ / "data" / "monitor-cache";
+  ASSERT_TRUE(fs::is_regular_file(cache / (result + ".png")));
+  ASSERT_TRUE(fs::is_regular_file(cache / (result + ".histogram.json")));
+
+  ASSERT_EQ(status_of(client().Delete(("/api/v1/jobs/" + std::to_string(job)).c_str(), sub())),
+            200);
+  EXPECT_FALSE(fs::exists(cache / (result + ".png")));
+  EXPECT_FALSE(fs::exists(cache / (result + ".histogram.json")));
+}
+
 TEST(FrameViews, ScalingKeepsTheAspectAndAveragesInLinearLight) {
   RgbaImage img(1000, 10);
   for (int y = 0; y < 10; ++y)
