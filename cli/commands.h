@@ -158,8 +158,9 @@ int run_submit(const SubmitCommandOptions& options);
 struct JobCommandOptions {
   FarmOptions farm;
   std::optional<long long> job;
-  std::string output_dir;  // fetch
-  bool json = false;       // status: the server's JSON
+  std::string output_dir;         // fetch
+  bool json = false;              // status: the server's JSON
+  std::optional<long long> task;  // logs --task: one task's log
 };
 int run_status(const JobCommandOptions& options);
 int run_cancel(const JobCommandOptions& options);

@@ -44,6 +44,18 @@ Setter number(double& out, double lo, double hi) {
   };
 }
 
+// An http:// or https:// URL, or empty (= off).
+Setter optional_url(std::string& out) {
+  return [&out](const toml::node& n) {
+    if (!n.is_string()) throw std::invalid_argument("expected a string");
+    const std::string v = *n.value<std::string>();
+    if (!v.empty() && v.rfind("http://", 0) != 0 && v.rfind("https://", 0) != 0)
+      throw std::invalid_argument("expected an http:// or https:// URL (or \"\" for none), got '" +
+                                  v + "'");
+    out = v;
+  };
+}
+
 // An array of SHA-256 hex digests (renderer builds).
 Setter sha256_list(std::vector<std::string>& out) {
   return [&out](const toml::node& n) {
@@ -75,7 +87,8 @@ std::map<std::string, std::map<std::string, Setter>> setters(FarmSettings& s) {
         {"header_timeout", number(s.server.header_timeout, 0.1, 3600)},
         {"idle_timeout", number(s.server.idle_timeout, 0.1, 3600)},
         {"task_timeout", number(s.server.task_timeout, 0, 30 * 86400)},
-        {"trusted_renderers", sha256_list(s.server.trusted_renderers)}}},
+        {"trusted_renderers", sha256_list(s.server.trusted_renderers)},
+        {"webhook_url", optional_url(s.server.webhook_url)}}},
       {"worker",
        {{"server", str(s.worker.server)},
         {"cache_dir", str(s.worker.cache_dir)},

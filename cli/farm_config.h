@@ -24,6 +24,8 @@ struct FarmServerSettings {
   // Renderer builds (sha256) whose results later identical jobs may reuse,
   // besides the server's own build.
   std::vector<std::string> trusted_renderers;
+  // Jobs that end are announced with a POST of JSON here; empty = off.
+  std::string webhook_url;
 };
 
 struct FarmWorkerSettings {

@@ -21,6 +21,7 @@ ServerConfig server_config(const FarmSettings& s) {
   c.idle_timeout = s.server.idle_timeout;
   c.task_timeout = s.server.task_timeout;
   c.trusted_renderers = s.server.trusted_renderers;
+  c.webhook_url = s.server.webhook_url;
   return c;
 }
 

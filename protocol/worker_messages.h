@@ -93,6 +93,9 @@ struct HeartbeatResponse {
 struct CompleteRequest {
   std::string lease_id;
   std::string result;  // SHA-256 of the result blob
+  // Tail of the render's log, kept as the task's log (the server keeps the
+  // last 16 KiB); optional: a worker that sends none still completes.
+  std::string log;
 };
 
 // POST /fail

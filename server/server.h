@@ -71,6 +71,9 @@ struct ServerConfig {
   // Trust this server's own executable's build too (the `vesper` binary that
   // workers of the same installation run).
   bool trust_own_build = true;
+  // Every job that ends (done, failed, canceled) is announced with a POST of
+  // JSON to this URL (server/job_webhook.h). Empty: no webhook.
+  std::string webhook_url;
 };
 
 class Server {

@@ -68,7 +68,9 @@ TEST(WorkerMessagesTest, SmallMessagesKeepTheirKeys) {
   EXPECT_EQ(json(HeartbeatResponse{HeartbeatAnswer::Stop}).dump(), R"({"answer":"stop"})");
   EXPECT_EQ(round_trip(HeartbeatResponse{HeartbeatAnswer::Stop}).answer, HeartbeatAnswer::Stop);
   EXPECT_THROW(json::parse(R"({"answer":"maybe"})").get<HeartbeatResponse>(), json::exception);
-  EXPECT_EQ(json(CompleteRequest{"L", "R"}).dump(), R"({"lease_id":"L","result":"R"})");
+  EXPECT_EQ(json(CompleteRequest{"L", "R", ""}).dump(), R"({"lease_id":"L","result":"R"})");
+  EXPECT_EQ(json(CompleteRequest{"L", "R", "tail"}).dump(),
+            R"({"lease_id":"L","log":"tail","result":"R"})");  // the render's log, optional
   EXPECT_EQ(json(FailRequest{"L", "log"}).dump(), R"({"lease_id":"L","log":"log"})");
   EXPECT_EQ(json(OkResponse{}).dump(), R"({"ok":true})");
   EXPECT_THROW(json::parse(R"({"lease_id":"L"})").get<CompleteRequest>(), json::exception);
