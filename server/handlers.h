@@ -32,6 +32,7 @@ struct JobHandlerDeps {
   std::vector<std::string> reusable_renderers;
   // Tasks were completed (at submit, by reuse): frames may wait for a merge.
   std::function<void()> tasks_completed;
+  ServerCounters& counters;  // tasks reused at submit
 };
 void add_job_handlers(HandlerTable& table, const JobHandlerDeps& deps);
 

@@ -19,6 +19,7 @@
 #include "server/frame_merger.h"
 #include "server/lease_tracker.h"
 #include "server/locked_store.h"
+#include "server/metrics.h"
 #include "server/requests.h"
 #include "server/server_clock.h"
 
@@ -102,6 +103,7 @@ ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
   });
   spdlog::info("job {} '{}' submitted: {} frames, {} tasks", id, spec.name, spec.frames.size(), n);
   if (reused > 0) {
+    d.counters.tasks_reused(reused);
     spdlog::info("job {}: {} of {} tasks done at once with identical tasks' results", id, reused,
                  n);
     d.tasks_completed();  // frames of several tasks to merge, outputs' noise to read

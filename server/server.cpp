@@ -110,7 +110,7 @@ struct Server::Impl {
     HandlerTable table;
     add_job_handlers(table, {store, blobs, leases, merger, clock,
                              std::vector<std::string>(trusted.begin(), trusted.end()),
-                             [this] { tasks_completed(); }});
+                             [this] { tasks_completed(); }, counters});
     add_worker_handlers(
         table,
         {store, blobs, workers, leases, counters, clock, config.lease_seconds, config.task_timeout,

@@ -85,6 +85,10 @@ TEST_F(FarmConfigErrors, NameTheFileKeyAndProblem) {
   EXPECT_NE(error_of("[worker]\nidle_backoff_min = 9.0\n").find("idle_backoff_min"),
             std::string::npos);
   EXPECT_EQ(error_of("[server]\nport = 9000\n[worker]\nheartbeat_seconds = 1\n"), "");
+  EXPECT_NE(error_of("[server]\nwebhook_url = \"ftp://x\"\n")
+                .find("server.webhook_url: expected an http:// or https:// URL"),
+            std::string::npos);
+  EXPECT_EQ(error_of("[server]\nwebhook_url = \"http://127.0.0.1:9/hook\"\n"), "");
 }
 
 TEST(FarmConfig, FileValuesOverrideDefaults) {

@@ -8,6 +8,7 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "tests/cli/farm_test_fixture.h"
 
@@ -80,16 +81,24 @@ TEST_F(FarmTest, CancelKillsTheRunningRenderWithinOneHeartbeat) {
   std::this_thread::sleep_for(std::chrono::duration<double>(2 * heartbeat));  // well under way
   ASSERT_TRUE(alive(render[0]));
 
+  // Timed from the cancel's answer (the API's, not a `vesper cancel`
+  // process's: its start-up is no part of the protocol).
+  httplib::Client http("127.0.0.1", port_);
+  http.set_bearer_token_auth(submitter_);
+  const auto answer =
+      http.Post(fmt::format("/api/v1/jobs/{}/cancel", id), "{}", "application/json");
   const auto canceled_at = std::chrono::steady_clock::now();
-  const RunResult c = farm(fmt::format("cancel {}", id));
-  ASSERT_EQ(c.exit_code, 0) << c.err;
+  ASSERT_TRUE(answer);
+  ASSERT_EQ(answer->status, 200) << answer->body;
   while (alive(render[0]) && seconds_since(canceled_at) < 30)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   const double gone_after = seconds_since(canceled_at);
   EXPECT_FALSE(alive(render[0])) << worker_log("w1");
-  // One heartbeat interval plus the kill grace, with a second for the
-  // `vesper cancel` process itself and the HTTP round trips.
-  EXPECT_LT(gone_after, heartbeat + grace + 1.0) << worker_log("w1");
+  // One heartbeat interval plus the kill grace, with half a second for the
+  // HTTP round trip and the worker's reaping on a loaded machine.
+  EXPECT_LT(gone_after, heartbeat + grace + 0.5) << worker_log("w1");
+  std::printf("render gone %.3f s after the cancel (heartbeat %.1f s, grace %.1f s)\n", gone_after,
+              heartbeat, grace);
   EXPECT_NE(worker_log("w1").find("the server says stop; killing the render"), std::string::npos)
       << worker_log("w1");
   const auto j = job(id);
@@ -155,10 +164,8 @@ TEST_F(FarmTest, AResubmittedJobIsDoneAtOnceBehindABusyJob) {
   start_worker("w1", config);
   const long long first = submit(scene.string() + " --frames 1-2 --name first");
   ASSERT_EQ(wait_finished(first, 120).at("state"), "done");
-  const auto busy_scene = dir_ / "busy" / "scene.json";
-  std::filesystem::create_directories(busy_scene.parent_path());
-  std::filesystem::copy_file(write_scene(64, 48, 1 << 20), busy_scene);
-  const long long busy = submit(busy_scene.string() + " --frames 1 --priority 90 --name busy");
+  const long long busy =
+      submit(scene.string() + " --frames 1 --spp 1048576 --priority 90 --name busy");
   wait_job(busy, 60, [](const nlohmann::json& j) { return j.at("counts").at("leased") == 1; });
 
   const long long again = submit(scene.string() + " --frames 1-2 --name again");

@@ -231,7 +231,8 @@ TEST_F(ServerTest, DryRunValidatesAndCreatesNothing) {
 }
 
 // Leases carry the worker's renderer id (sha256 of its executable); an
-// identical task already done by that renderer is completed, not leased.
+// identical task already done by a trusted renderer is completed at submit,
+// never leased.
 TEST_F(ServerTest, LeaseWithARendererIdReusesIdenticalResults) {
   const std::string renderer(64, 'a');
   ServerConfig c = config();
@@ -248,6 +249,7 @@ TEST_F(ServerTest, LeaseWithARendererIdReusesIdenticalResults) {
   const std::string result = put_blob("the frame");
   post_ok("/complete", {{"lease_id", l.at("lease_id")}, {"result", result}}, wrk());
   const int64_t second = submit(1);  // same scene blob, frames, spp
+  EXPECT_EQ(get_ok("/jobs/" + std::to_string(second)).at("state"), "done") << "at submit";
   auto none = post("/lease", {{"worker_id", w}, {"renderer", renderer}}, wrk());
   ASSERT_TRUE(none);
   EXPECT_EQ(none->status, 204) << "the identical task should not be leased";
