@@ -112,10 +112,10 @@ struct JobSummary {
   int priority = 0;
   JobState state = JobState::Active;
   int queued = 0, leased = 0, done = 0, failed = 0, canceled = 0, paused = 0;
-  int reused = 0;                  // of the done tasks, those done without rendering
-  double submitted_at = 0;           // the store's clock, seconds
-  std::optional<double> started_at;  // first task leased or reused
-  std::optional<double> finished_at; // reached done, failed or canceled
+  int reused = 0;                     // of the done tasks, those done without rendering
+  double submitted_at = 0;            // the store's clock, seconds
+  std::optional<double> started_at;   // first task leased or reused
+  std::optional<double> finished_at;  // reached done, failed or canceled
   int total() const { return queued + leased + done + failed + canceled + paused; }
   bool finished() const { return queued + leased + paused == 0; }
 };
