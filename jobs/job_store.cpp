@@ -198,7 +198,8 @@ HeartbeatAnswer JobStore::heartbeat(const std::string& lease_id, double now) {
   sql::Transaction tx(db);
   const auto task = impl_->leased_task(lease_id);
   if (!task) {
-    // Canceled and paused tasks keep the lease id they had: tell that worker to stop.
+    // Canceled tasks keep the lease id they had: tell that worker to stop (so
+    // do tasks paused while leased by a vesper before schema 10).
     sql::Stmt s(db, "SELECT state FROM tasks WHERE lease_id = ?1");
     s.bind(1, lease_id);
     const bool stopped = s.step() && (s.text(0) == "canceled" || s.text(0) == "paused");

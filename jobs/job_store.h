@@ -26,7 +26,8 @@ struct StoreOptions {
       3;  // distinct tasks of a job a worker failed before it is blocked for that job
 };
 
-// KeepRunning extends the lease; Stop: the job was canceled or paused;
+// KeepRunning extends the lease (a paused job's leased tasks keep running);
+// Stop: the job was canceled;
 // StaleLease: the lease expired or was replaced (the worker lost the task).
 enum class HeartbeatAnswer { KeepRunning, Stop, StaleLease };
 

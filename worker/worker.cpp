@@ -313,8 +313,8 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
   return out;
 }
 
-// One heartbeat; false when the render must stop ("stop": job canceled or
-// paused; 409: the lease is stale). A transport failure waits for the next
+// One heartbeat; false when the render must stop ("stop": job canceled;
+// 409: the lease is stale). A transport failure waits for the next
 // beat; an accepted beat renews the lease (`retry`'s deadline).
 bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress, LeaseRetry& retry) {
   const HttpResponse hb = api->heartbeat({l.lease_id, progress});
