@@ -162,6 +162,9 @@ struct JobCommandOptions {
   bool json = false;          // status: the server's JSON
   bool prune = false;         // workers: remove offline and lost ones
   bool cancel_first = false;  // delete: cancel an active job first
+  std::string output_dir;         // fetch
+  bool json = false;              // status: the server's JSON
+  std::optional<long long> task;  // logs --task: one task's log
 };
 int run_status(const JobCommandOptions& options);
 int run_cancel(const JobCommandOptions& options);

@@ -62,6 +62,18 @@ Setter boolean(bool& out) {
   };
 }
 
+// An http:// or https:// URL, or empty (= off).
+Setter optional_url(std::string& out) {
+  return [&out](const toml::node& n) {
+    if (!n.is_string()) throw std::invalid_argument("expected a string");
+    const std::string v = *n.value<std::string>();
+    if (!v.empty() && v.rfind("http://", 0) != 0 && v.rfind("https://", 0) != 0)
+      throw std::invalid_argument("expected an http:// or https:// URL (or \"\" for none), got '" +
+                                  v + "'");
+    out = v;
+  };
+}
+
 // An array of SHA-256 hex digests (renderer builds).
 Setter sha256_list(std::vector<std::string>& out) {
   return [&out](const toml::node& n) {
@@ -96,6 +108,7 @@ std::map<std::string, std::map<std::string, Setter>> setters(FarmSettings& s) {
         {"trusted_renderers", sha256_list(s.server.trusted_renderers)},
         {"monitor_read_only", boolean(s.server.monitor_read_only)},
         {"blob_grace_seconds", number(s.server.blob_grace_seconds, 0, 365 * 86400.0)}}},
+        {"webhook_url", optional_url(s.server.webhook_url)}}},
       {"worker",
        {{"server", str(s.worker.server)},
         {"cache_dir", str(s.worker.cache_dir)},

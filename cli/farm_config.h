@@ -27,6 +27,8 @@ struct FarmServerSettings {
   // The browser monitor's reads without a token (a wall screen on a trusted network).
   bool monitor_read_only = false;
   double blob_grace_seconds = 3600;  // an upload no job references yet survives GC this long
+  // Jobs that end are announced with a POST of JSON here; empty = off.
+  std::string webhook_url;
 };
 
 struct FarmWorkerSettings {

@@ -23,6 +23,7 @@ ServerConfig server_config(const FarmSettings& s) {
   c.trusted_renderers = s.server.trusted_renderers;
   c.monitor_read_only = s.server.monitor_read_only;
   c.blob_grace_seconds = s.server.blob_grace_seconds;
+  c.webhook_url = s.server.webhook_url;
   return c;
 }
 

@@ -1,4 +1,5 @@
-// vesper status | cancel | retry | logs | fetch: a job on the farm.
+// vesper cancel | pause | resume | workers | retry | logs | fetch: a job on
+// the farm (vesper status: job_status.cpp).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
@@ -8,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/fetch.h"
+#include "cli/job_client.h"
 #include "cli/job_watch.h"
 #include "common/control_characters.h"
 #include "jobs/frame_range.h"
@@ -18,52 +20,9 @@
 namespace vesper::cli {
 namespace {
 
-// Runs `body` with a client, turning the farm's errors into messages and exit codes.
-template <typename Body>
-int with_client(const JobCommandOptions& o, Body&& body) {
-  try {
-    const FarmSettings settings = load_farm_settings(o.farm.config);
-    const std::string url = resolve_server_url(settings, o.farm.server);
-    FarmClient client(url, resolve_token(settings, url, o.farm.token, TokenRole::Submitter));
-    return body(client);
-  } catch (const FarmConfigError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-}
-
 const std::string kWorkersPath(protocol::paths::kWorkers);
 
-// The noise each finished frame reached, from its output's metadata (only
-// when some frame's output says: a noise target or a time limit).
-void print_frame_noise(const std::vector<protocol::FrameInfo>& frames) {
-  auto says = [](const protocol::FrameInfo& f) {
-    return f.noise_reached || f.spp_mean || !f.stop_reason.empty();
-  };
-  if (std::none_of(frames.begin(), frames.end(), says)) return;
-  std::printf("%8s %14s %9s  %s\n", "frame", "noise reached", "spp mean", "stopped by");
-  for (const protocol::FrameInfo& f : frames) {
-    if (!says(f)) continue;
-    std::printf("%8d %14s %9s  %s\n", f.frame,
-                f.noise_reached ? fmt::format("{:.4g}", *f.noise_reached).c_str() : "-",
-                f.spp_mean ? fmt::format("{:.1f}", *f.spp_mean).c_str() : "-",
-                f.stop_reason.empty() ? "-" : escape_control_characters(f.stop_reason).c_str());
-  }
-}
-
-// worker id -> name, for tables people read (escaped: names come from
-// whoever holds a worker token, and an old server did not refuse ESC or CR).
-std::map<std::string, std::string> worker_names(FarmClient& c) {
-  std::map<std::string, std::string> names;
-  for (const auto& w : c.get_json(kWorkersPath).get<protocol::WorkerList>().workers)
-    names[w.worker_id] = escape_control_characters(w.name);
-  return names;
-}
-
-// A failure log for a terminal: line by line, each line's control characters
+// A log for a terminal: line by line, each line's control characters
 // escaped (a render's stderr may carry anything).
 std::string printable_log(const std::string& log) {
   std::string out;
@@ -73,52 +32,6 @@ std::string printable_log(const std::string& log) {
   return out + escape_control_characters(log.substr(begin));
 }
 
-}  // namespace
-
-int run_status(const JobCommandOptions& o) {
-  return with_client(o, [&](FarmClient& c) {
-    if (!o.job) {
-      const nlohmann::json all = c.get_json(std::string(protocol::paths::kJobs));
-      if (o.json) {  // as the server said it
-        std::printf("%s\n", all.dump(2).c_str());
-        return 0;
-      }
-      const auto jobs = all.get<protocol::JobList>().jobs;
-      if (jobs.empty()) std::printf("no jobs\n");
-      for (const auto& j : jobs) std::printf("%s\n", describe_job(j).c_str());
-      return 0;
-    }
-    const nlohmann::json answer = c.get_job_json(*o.job);
-    if (o.json) {
-      std::printf("%s\n", answer.dump(2).c_str());
-      return 0;
-    }
-    const auto j = answer.get<protocol::JobDetail>();
-    std::printf("%s\n", describe_job(j).c_str());
-    const auto names = worker_names(c);
-    auto name_of = [&](const std::string& id) {
-      const auto it = names.find(id);
-      return it == names.end() ? escape_control_characters(id) : it->second;
-    };
-    for (const auto& b : j.blocked_workers)
-      std::printf("blocked for this job: %s\n", name_of(b).c_str());
-    std::printf("%8s %6s %13s %9s %8s  %s\n", "task", "frame", "samples", "state", "attempts",
-                "worker");
-    for (const protocol::TaskInfo& t : j.tasks) {
-      std::string state = t.state;
-      if (t.progress) state += fmt::format(" {:.0f}%", 100.0 * *t.progress);
-      std::printf("%8lld %6d %13s %9s %8d  %s\n", static_cast<long long>(t.id), t.frame,
-                  fmt::format("[{}, {})", t.sample_begin, t.sample_end).c_str(), state.c_str(),
-                  t.attempts,
-                  t.reused_from ? fmt::format("(reused task {})", t.reused_from).c_str()
-                                : name_of(t.worker).c_str());
-    }
-    print_frame_noise(j.frames);
-    return 0;
-  });
-}
-
-namespace {
 protocol::JobActionResponse post_action(FarmClient& c, int64_t job, protocol::JobAction action) {
   return c.post_json(protocol::job_action_path(job, action), nlohmann::json::object())
       .get<protocol::JobActionResponse>();
@@ -200,19 +113,31 @@ int run_retry(const JobCommandOptions& o) {
   });
 }
 
+namespace {
+// Every task's log tail, each headed by its task, frame, state and attempts.
+int print_all_logs(FarmClient& c, int64_t job) {
+  const auto j = c.get_job(job);
+  int shown = 0;
+  for (const protocol::TaskInfo& t : j.tasks) {
+    if (!t.has_log) continue;
+    std::printf("=== task %lld (frame %d, samples [%d, %d)), %s after %d attempts ===\n%s\n",
+                static_cast<long long>(t.id), t.frame, t.sample_begin, t.sample_end,
+                t.state.c_str(), t.attempts,
+                printable_log(c.get_text(protocol::task_log_path(job, t.id))).c_str());
+    ++shown;
+  }
+  if (shown == 0) spdlog::info("job {}: no task has a log yet", job);
+  return 0;
+}
+}  // namespace
+
 int run_logs(const JobCommandOptions& o) {
   return with_client(o, [&](FarmClient& c) {
-    const auto j = c.get_job(*o.job);
-    int shown = 0;
-    for (const protocol::TaskInfo& t : j.tasks) {
-      if (!t.has_log) continue;
-      std::printf("=== task %lld (frame %d, samples [%d, %d)), %s after %d attempts ===\n%s\n",
-                  static_cast<long long>(t.id), t.frame, t.sample_begin, t.sample_end,
-                  t.state.c_str(), t.attempts,
-                  printable_log(c.get_text(protocol::task_log_path(*o.job, t.id))).c_str());
-      ++shown;
-    }
-    if (shown == 0) spdlog::info("job {}: no task has a failure log", *o.job);
+    if (!o.task) return print_all_logs(c, *o.job);
+    const std::string log = c.get_text(protocol::task_log_path(*o.job, *o.task));
+    if (log.empty()) spdlog::info("job {}: task {} has no log yet", *o.job, *o.task);
+    std::printf("%s", printable_log(log).c_str());
+    if (!log.empty() && log.back() != '\n') std::printf("\n");
     return 0;
   });
 }

@@ -104,7 +104,7 @@ namespace {
 // work no registered worker may take (each is blocklisted for this job),
 // which would be waited for forever (said as an error).
 bool wait_is_over(FarmClient& client, const protocol::JobDetail& j) {
-  if (j.summary.finished || j.summary.state == "canceled") return true;
+  if (j.summary.ended()) return true;
   const protocol::JobCounts& c = j.summary.counts;
   if (c.queued == 0 || c.leased > 0 || j.blocked_workers.empty() || !all_workers_blocked(client, j))
     return false;

@@ -329,7 +329,7 @@ void add_job_commands(CLI::App& app, Dispatch& dispatch) {
   st->add_option("job", o->job, "Job id");
   st->add_flag("--json", o->json, "Print the server's JSON");
   add_job("cancel", "Cancel a job (running tasks stop at their next heartbeat)", true, run_cancel);
-  add_job("pause", "Pause a job (running tasks stop at their next heartbeat)", true, run_pause);
+  add_job("pause", "Pause a job (no new tasks are leased; running ones finish)", true, run_pause);
   add_job("resume", "Resume a paused job", true, run_resume);
   auto* wl =
       add_job("workers", "Workers registered with the farm, and what they run", false, run_workers);
@@ -339,7 +339,9 @@ void add_job_commands(CLI::App& app, Dispatch& dispatch) {
                      run_delete);
   de->add_flag("--cancel", o->cancel_first, "Cancel the job first if it is still active");
   add_job("retry", "Requeue a job's failed tasks (and clear its blocklist)", true, run_retry);
-  add_job("logs", "Failure logs of a job's tasks", true, run_logs);
+  auto* lg = add_job("logs", "Log tails of a job's tasks (each task keeps its last render's)", true,
+                     run_logs);
+  lg->add_option("--task", o->task, "Only this task's log (a task id from `vesper status JOB`)");
   auto* fe =
       add_job("fetch", "Download a job's finished frames (merged per frame)", true, run_fetch);
   fe->add_option("-o,--output", o->output_dir, "Directory for <job>.####.exr")->required();

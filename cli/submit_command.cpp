@@ -177,7 +177,7 @@ int run_submit(const SubmitCommandOptions& o) {
     protocol::JobDetail j = wait_for_job(client, s.id);
     j.frames = wait_for_merges(client, s.id).frames;  // a split frame's noise is its merge's
     spdlog::info("{}", describe_job(j));
-    return j.summary.counts.done == j.summary.total ? 0 : 3;
+    return j.summary.state == "done" ? 0 : 3;  // failed, canceled, or stuck (every worker blocked)
   } catch (const SceneError& e) {
     spdlog::error("{}", e.what());
     return 2;

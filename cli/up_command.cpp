@@ -176,7 +176,7 @@ void cancel_leftover_jobs(FarmClient& client, const std::filesystem::path& data_
   const auto previous =
       client.get_json(std::string(protocol::paths::kJobs)).get<protocol::JobList>();
   for (const protocol::JobSummary& j : previous.jobs)
-    if (!j.finished && j.state != "canceled") {
+    if (!j.ended()) {
       client.post_json(protocol::job_action_path(j.id, protocol::JobAction::Cancel),
                        nlohmann::json::object());
       spdlog::warn("canceled job {} '{}' left unfinished by an earlier `vesper up` in {}", j.id,

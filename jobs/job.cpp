@@ -1,5 +1,7 @@
 #include "jobs/job.h"
 
+#include <algorithm>
+
 #include "common/control_characters.h"
 #include "common/scene_reference.h"
 
@@ -28,10 +30,21 @@ const char* to_string(JobState s) {
       return "active";
     case JobState::Paused:
       return "paused";
+    case JobState::Done:
+      return "done";
+    case JobState::Failed:
+      return "failed";
     case JobState::Canceled:
       return "canceled";
   }
   return "?";
+}
+
+std::optional<double> estimate_eta(const JobSummary& job, double now) {
+  const int rendered = job.done - job.reused;
+  if (job.state != JobState::Active || !job.started_at || rendered <= 0) return std::nullopt;
+  const int remaining = job.queued + job.leased + job.paused;
+  return std::max(0.0, now - *job.started_at) * remaining / rendered;
 }
 
 std::string asset_name_problem(std::string_view name) {

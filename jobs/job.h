@@ -1,7 +1,8 @@
 #pragma once
 // The job model: a job is a scene plus frames, split into tasks of sample
 // ranges; tasks move queued -> leased -> done/failed, and can be canceled or
-// paused with their job.
+// paused with their job. A job ends done, failed or canceled (docs/farm.md,
+// "Job lifecycle").
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -48,7 +49,9 @@ struct JobSpec {
 };
 
 enum class TaskState { Queued, Leased, Done, Failed, Canceled, Paused };
-enum class JobState { Active, Paused, Canceled };
+// Done: every task done; Failed: nothing left to run and at least one task
+// failed; both are derived when the last task ends. Canceled: by the user.
+enum class JobState { Active, Paused, Done, Failed, Canceled };
 
 const char* to_string(TaskState s);
 const char* to_string(JobState s);
@@ -59,11 +62,14 @@ struct Task {
   int frame = 0;
   int sample_begin = 0, sample_end = 0;
   TaskState state = TaskState::Queued;
-  int attempts = 0;
+  int attempts = 0;         // leases granted (a rendered done task has at least 1)
   std::string worker;       // current or last lease holder
   std::string result;       // set when done
-  std::string log;          // tail of the last failure's log
+  std::string log;          // tail of the last attempt's render log (done or failed)
   int64_t reused_from = 0;  // done without rendering: the identical task whose result it took
+  // The last attempt: leased at `started`, ended (done, failed, expired) at
+  // `finished`; the store's clock, seconds.
+  std::optional<double> started, finished;
 };
 
 struct Lease {
@@ -106,8 +112,17 @@ struct JobSummary {
   int priority = 0;
   JobState state = JobState::Active;
   int queued = 0, leased = 0, done = 0, failed = 0, canceled = 0, paused = 0;
+  int reused = 0;                     // of the done tasks, those done without rendering
+  double submitted_at = 0;            // the store's clock, seconds
+  std::optional<double> started_at;   // first task leased or reused
+  std::optional<double> finished_at;  // reached done, failed or canceled
   int total() const { return queued + leased + done + failed + canceled + paused; }
   bool finished() const { return queued + leased + paused == 0; }
 };
+
+// Seconds until an active job is done, estimated from the pace of its
+// rendered tasks so far (remaining tasks × elapsed / rendered); nullopt when
+// the job is not active or nothing was rendered yet.
+std::optional<double> estimate_eta(const JobSummary& job, double now);
 
 }  // namespace vesper

@@ -35,14 +35,16 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
   lease.expiry = now + store.options.lease_seconds;
   sql::Stmt(store.db,
             "UPDATE tasks SET state = 'leased', lease_id = ?2, worker = ?3, lease_expiry = ?4, "
-            "renderer = ?5 WHERE id = ?1")
+            "renderer = ?5, attempts = attempts + 1, started = ?6, finished = NULL WHERE id = ?1")
       .bind(1, task_id)
       .bind(2, lease.lease_id)
       .bind(3, worker)
       .bind(4, lease.expiry)
       .bind(5, renderer)
+      .bind(6, now)
       .run();
   lease.task = *store.leased_task(lease.lease_id);
+  store.mark_job_started(lease.task.job_id, now);
   describe_lease(store, lease);
   return lease;
 }
@@ -196,7 +198,8 @@ HeartbeatAnswer JobStore::heartbeat(const std::string& lease_id, double now) {
   sql::Transaction tx(db);
   const auto task = impl_->leased_task(lease_id);
   if (!task) {
-    // Canceled and paused tasks keep the lease id they had: tell that worker to stop.
+    // Canceled tasks keep the lease id they had: tell that worker to stop (so
+    // do tasks paused while leased by a vesper before schema 10).
     sql::Stmt s(db, "SELECT state FROM tasks WHERE lease_id = ?1");
     s.bind(1, lease_id);
     const bool stopped = s.step() && (s.text(0) == "canceled" || s.text(0) == "paused");
@@ -211,29 +214,33 @@ HeartbeatAnswer JobStore::heartbeat(const std::string& lease_id, double now) {
 }
 
 bool JobStore::complete(const std::string& lease_id, const std::string& result, double now,
-                        const std::optional<FrameNoise>& result_noise) {
+                        const std::optional<FrameNoise>& result_noise,
+                        const std::string& log_tail) {
   auto& db = impl_->db;
   sql::Transaction tx(db);
   const auto task = impl_->leased_task(lease_id);
   if (!task) return false;
   sql::Stmt(db,
-            "UPDATE tasks SET state = 'done', result = ?2, lease_id = NULL, lease_expiry = NULL "
-            "WHERE id = ?1")
+            "UPDATE tasks SET state = 'done', result = ?2, lease_id = NULL, lease_expiry = NULL, "
+            "finished = ?3, log = ?4 WHERE id = ?1")
       .bind(1, task->id)
       .bind(2, result)
+      .bind(3, now)
+      .bind(4, log_tail)
       .run();
   // A frame of one task: its result is the frame's output, recorded with the completion.
   impl_->record_output_if_single_task_frame(*task, result, now, result_noise);
+  impl_->settle_job(task->job_id, now);
   tx.commit();
   return true;
 }
 
-bool JobStore::fail(const std::string& lease_id, const std::string& log_tail, double) {
+bool JobStore::fail(const std::string& lease_id, const std::string& log_tail, double now) {
   auto& db = impl_->db;
   sql::Transaction tx(db);
   const auto task = impl_->leased_task(lease_id);
   if (!task) return false;
-  impl_->record_failure(task->id, task->job_id, task->worker, log_tail);
+  impl_->record_failure(task->id, task->job_id, task->worker, log_tail, now);
   tx.commit();
   return true;
 }
@@ -254,101 +261,6 @@ int JobStore::expire_leases(double now) {
   const int n = impl_->expire(now);
   tx.commit();
   return n;
-}
-
-namespace {
-// Sets a job's state and moves its unfinished tasks; false for an unknown job.
-bool set_job_state(sql::Db& db, int64_t job, const char* job_state, const char* task_sql) {
-  sql::Transaction tx(db);
-  sql::Stmt check(db, "SELECT 1 FROM jobs WHERE id = ?1");
-  check.bind(1, job);
-  if (!check.step()) return false;
-  sql::Stmt(db, "UPDATE jobs SET state = ?2 WHERE id = ?1")
-      .bind(1, job)
-      .bind(2, std::string(job_state))
-      .run();
-  sql::Stmt(db, task_sql).bind(1, job).run();
-  tx.commit();
-  return true;
-}
-}  // namespace
-
-// A canceled or paused job's leased tasks stop being leased at once: the
-// worker's next heartbeat answers Stop, and its late upload is refused.
-bool JobStore::cancel(int64_t job) {
-  return set_job_state(impl_->db, job, "canceled",
-                       "UPDATE tasks SET state = 'canceled', lease_expiry = NULL "
-                       "WHERE job_id = ?1 AND state IN ('queued', 'leased', 'paused')");
-}
-bool JobStore::pause(int64_t job) {
-  return set_job_state(impl_->db, job, "paused",
-                       "UPDATE tasks SET state = 'paused', lease_expiry = NULL "
-                       "WHERE job_id = ?1 AND state IN ('queued', 'leased')");
-}
-bool JobStore::resume(int64_t job) {
-  return set_job_state(impl_->db, job, "active",
-                       "UPDATE tasks SET state = 'queued' WHERE job_id = ?1 AND state = 'paused'");
-}
-
-int JobStore::retry_failed(int64_t job) {
-  auto& db = impl_->db;
-  sql::Transaction tx(db);
-  sql::Stmt(
-      db, "UPDATE tasks SET state = 'queued', attempts = 0 WHERE job_id = ?1 AND state = 'failed'")
-      .bind(1, job)
-      .run();
-  const int n = sqlite3_changes(db.get());
-  sql::Stmt(db, "DELETE FROM worker_task_failures WHERE job_id = ?1").bind(1, job).run();
-  tx.commit();
-  return n;
-}
-
-std::optional<JobSummary> JobStore::job(int64_t id) const {
-  sql::Stmt s(impl_->db, "SELECT id, name, priority, state FROM jobs WHERE id = ?1");
-  s.bind(1, id);
-  if (!s.step()) return std::nullopt;
-  JobSummary j;
-  j.id = s.i64(0);
-  j.name = s.text(1);
-  j.priority = int(s.i64(2));
-  j.state = parse_job_state(s.text(3));
-  sql::Stmt c(impl_->db, "SELECT state, COUNT(*) FROM tasks WHERE job_id = ?1 GROUP BY state");
-  c.bind(1, id);
-  while (c.step()) {
-    const int n = int(c.i64(1));
-    switch (parse_task_state(c.text(0))) {
-      case TaskState::Queued:
-        j.queued = n;
-        break;
-      case TaskState::Leased:
-        j.leased = n;
-        break;
-      case TaskState::Done:
-        j.done = n;
-        break;
-      case TaskState::Failed:
-        j.failed = n;
-        break;
-      case TaskState::Canceled:
-        j.canceled = n;
-        break;
-      case TaskState::Paused:
-        j.paused = n;
-        break;
-    }
-  }
-  return j;
-}
-
-std::vector<JobSummary> JobStore::jobs() const {
-  std::vector<int64_t> ids;
-  {
-    sql::Stmt s(impl_->db, "SELECT id FROM jobs ORDER BY id");
-    while (s.step()) ids.push_back(s.i64(0));
-  }
-  std::vector<JobSummary> out;
-  for (int64_t id : ids) out.push_back(*job(id));
-  return out;
 }
 
 std::vector<Task> JobStore::tasks(int64_t job, int64_t after, size_t limit) const {

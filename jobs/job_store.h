@@ -26,7 +26,8 @@ struct StoreOptions {
       3;  // distinct tasks of a job a worker failed before it is blocked for that job
 };
 
-// KeepRunning extends the lease; Stop: the job was canceled or paused;
+// KeepRunning extends the lease (a paused job's leased tasks keep running);
+// Stop: the job was canceled;
 // StaleLease: the lease expired or was replaced (the worker lost the task).
 enum class HeartbeatAnswer { KeepRunning, Stop, StaleLease };
 
@@ -61,8 +62,10 @@ class JobStore {
   // re-leased, canceled. Committed results are never touched by stale calls.
   // `result_noise`, when given, is what the result says of its noise: a
   // one-task frame's output is recorded with it, in the same transaction.
+  // `log_tail`: the tail of the render's log (kept as the task's log).
   bool complete(const std::string& lease_id, const std::string& result, double now,
-                const std::optional<FrameNoise>& result_noise = std::nullopt);
+                const std::optional<FrameNoise>& result_noise = std::nullopt,
+                const std::string& log_tail = {});
   bool fail(const std::string& lease_id, const std::string& log_tail, double now);
   // Requeues tasks whose lease expired (counted as a failed attempt).
   int expire_leases(double now);
@@ -72,10 +75,35 @@ class JobStore {
   // worker) for the server's absence.
   int renew_leases(double now);
 
-  bool cancel(int64_t job);
+  // Job actions (docs/farm.md, "Job lifecycle"); false / 0 for an unknown
+  // job. Cancel ends an active or paused job at `now` (its leased tasks are
+  // told to stop at their next heartbeat); a job that ended stays as it is.
+  // Pause stops leasing the job's tasks, and its leased tasks run on (their
+  // results are taken); resume undoes it. retry_failed requeues the failed
+  // tasks of a job that is not canceled, and a failed job is active again.
+  bool cancel(int64_t job, double now);
   bool pause(int64_t job);
   bool resume(int64_t job);
   int retry_failed(int64_t job);
+  // Completes the queued tasks of `job` whose identical task (result_reuse.h)
+  // is done by one of `renderers` (the builds trusted for reuse) with its
+  // result, at `now`; returns how many. Called at submit, so a job whose
+  // tasks were all rendered before ends at once instead of waiting for a
+  // lease to reach it. Costs one query when no job with the same inputs has
+  // a done task.
+  int reuse_results(int64_t job, const std::vector<std::string>& renderers, double now);
+
+  // Jobs that ended (done, failed, canceled) and were not announced yet
+  // (server/job_webhook.h), oldest first; `frames` each one's frame count.
+  struct EndedJob {
+    JobSummary job;
+    int frames = 0;
+  };
+  std::vector<EndedJob> jobs_to_announce() const;
+  // The job was announced (or, with no webhook, need not be); a job that
+  // ends again after a retry is announced again.
+  void mark_announced(int64_t job);
+  void mark_all_announced();
 
   std::optional<JobSummary> job(int64_t job) const;
   std::vector<JobSummary> jobs() const;

@@ -12,7 +12,8 @@ TaskState parse_task_state(const std::string& s) {
 }
 
 JobState parse_job_state(const std::string& s) {
-  for (JobState j : {JobState::Active, JobState::Paused, JobState::Canceled})
+  for (JobState j :
+       {JobState::Active, JobState::Paused, JobState::Done, JobState::Failed, JobState::Canceled})
     if (s == to_string(j)) return j;
   throw StoreError("unknown job state '" + s + "' in the store");
 }
@@ -30,6 +31,8 @@ Task read_task(const sql::Stmt& s) {
   t.result = s.text(8);
   t.log = s.text(9);
   t.reused_from = s.i64(10);  // NULL reads as 0
+  t.started = s.optional_f64(11);
+  t.finished = s.optional_f64(12);
   return t;
 }
 
@@ -142,14 +145,15 @@ void JobStore::Impl::record_noise(int64_t job, int frame, const FrameNoise& nois
 }
 
 void JobStore::Impl::record_failure(int64_t task_id, int64_t job_id, const std::string& worker,
-                                    const std::string& log) {
-  sql::Stmt(
-      db,
-      "UPDATE tasks SET attempts = attempts + 1, lease_id = NULL, lease_expiry = NULL, log = ?2, "
-      "state = CASE WHEN attempts + 1 >= (SELECT max_attempts FROM jobs WHERE id = job_id) "
-      "THEN 'failed' ELSE 'queued' END WHERE id = ?1")
+                                    const std::string& log, double now) {
+  sql::Stmt(db,
+            "UPDATE tasks SET failures = failures + 1, lease_id = NULL, lease_expiry = NULL, "
+            "log = ?2, finished = ?3, state = CASE WHEN failures + 1 >= (SELECT max_attempts "
+            "FROM jobs WHERE id = job_id) THEN 'failed' WHEN (SELECT state FROM jobs WHERE id = "
+            "job_id) = 'paused' THEN 'paused' ELSE 'queued' END WHERE id = ?1")
       .bind(1, task_id)
       .bind(2, log)
+      .bind(3, now)
       .run();
   if (!worker.empty())
     sql::Stmt(db,
@@ -160,6 +164,27 @@ void JobStore::Impl::record_failure(int64_t task_id, int64_t job_id, const std::
         .bind(2, worker)
         .bind(3, task_id)
         .run();
+  settle_job(job_id, now);
+}
+
+void JobStore::Impl::mark_job_started(int64_t job, double now) {
+  sql::Stmt(db, "UPDATE jobs SET started = ?2 WHERE id = ?1 AND started IS NULL")
+      .bind(1, job)
+      .bind(2, now)
+      .run();
+}
+
+void JobStore::Impl::settle_job(int64_t job, double now) {
+  // Through tasks_by_state (state, job_id): a probe per state, whatever the job's size.
+  sql::Stmt(db,
+            "UPDATE jobs SET finished = ?2, state = CASE WHEN EXISTS(SELECT 1 FROM tasks WHERE "
+            "state = 'failed' AND job_id = ?1) THEN 'failed' WHEN EXISTS(SELECT 1 FROM tasks "
+            "WHERE state = 'canceled' AND job_id = ?1) THEN 'canceled' ELSE 'done' END "
+            "WHERE id = ?1 AND state IN ('active', 'paused') AND NOT EXISTS(SELECT 1 FROM tasks "
+            "WHERE state IN ('queued', 'leased', 'paused') AND job_id = ?1)")
+      .bind(1, job)
+      .bind(2, now)
+      .run();
 }
 
 int JobStore::Impl::expire(double now) {
@@ -171,7 +196,7 @@ int JobStore::Impl::expire(double now) {
     while (s.step()) expired.emplace_back(s.i64(0), s.i64(1), s.text(2));
   }
   for (const auto& [id, job, worker] : expired)
-    record_failure(id, job, worker, "lease expired (worker lost)");
+    record_failure(id, job, worker, "lease expired (worker lost)", now);
   return int(expired.size());
 }
 

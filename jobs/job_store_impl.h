@@ -17,7 +17,7 @@ JobState parse_job_state(const std::string& s);
 // The columns read_task() reads, in its order: "SELECT <kTaskColumns> FROM tasks ...".
 inline constexpr const char* kTaskColumns =
     "id, job_id, frame, sample_begin, sample_end, state, attempts, worker, result, log, "
-    "reused_from";
+    "reused_from, started, finished";
 Task read_task(const sql::Stmt& s);
 
 struct JobStore::Impl {
@@ -42,9 +42,17 @@ struct JobStore::Impl {
   // Records a frame output's noise unless it was read already.
   void record_noise(int64_t job, int frame, const FrameNoise& noise);
 
-  // Failed attempt bookkeeping shared by fail() and lease expiry.
+  // Failed attempt bookkeeping shared by fail() and lease expiry: the task
+  // is requeued (paused, in a paused job) or, out of attempts, failed.
   void record_failure(int64_t task_id, int64_t job_id, const std::string& worker,
-                      const std::string& log);
+                      const std::string& log, double now);
+  // A task of `job` was leased or reused at `now`: the job started, if it had not.
+  void mark_job_started(int64_t job, double now);
+  // A task of `job` ended: when nothing is left to run, the job ends done
+  // (every task done) or failed (one failed), at `now`. Canceled jobs stay
+  // canceled. Cheap when tasks are left (an index probe), so it follows
+  // every task that ends.
+  void settle_job(int64_t job, double now);
   // Requeues the tasks whose lease expired before `now`; returns how many.
   int expire(double now);
 };

@@ -37,15 +37,53 @@ bool complete_from_identical_task(JobStore::Impl& store, int64_t task_id,
   const int64_t source = same.i64(0);
   const std::string result = same.text(1);
   sql::Stmt(store.db,
-            "UPDATE tasks SET state = 'done', result = ?2, renderer = ?3, reused_from = ?4 "
-            "WHERE id = ?1")
+            "UPDATE tasks SET state = 'done', result = ?2, renderer = ?3, reused_from = ?4, "
+            "started = ?5, finished = ?5 WHERE id = ?1")
       .bind(1, task_id)
       .bind(2, result)
       .bind(3, renderer)
       .bind(4, source)
+      .bind(5, now)
       .run();
-  store.record_output_if_single_task_frame(*store.task(task_id), result, now);
+  const Task task = *store.task(task_id);
+  store.record_output_if_single_task_frame(task, result, now);
+  store.mark_job_started(task.job_id, now);
+  store.settle_job(task.job_id, now);
   return true;
+}
+
+namespace {
+// Whether another job with the inputs of `job` has a task done by a known
+// renderer: without one, nothing of `job` can be reused (one query, not one per task).
+bool may_reuse(const sql::Db& db, int64_t job) {
+  sql::Stmt s(db,
+              "SELECT 1 FROM jobs j JOIN jobs o ON o.inputs_key = j.inputs_key AND o.id <> j.id "
+              "WHERE j.id = ?1 AND j.inputs_key <> '' AND EXISTS(SELECT 1 FROM tasks d WHERE "
+              "d.state = 'done' AND d.job_id = o.id AND d.renderer <> '') LIMIT 1");
+  s.bind(1, job);
+  return s.step();
+}
+}  // namespace
+
+int JobStore::reuse_results(int64_t job, const std::vector<std::string>& renderers, double now) {
+  auto& db = impl_->db;
+  sql::Transaction tx(db);
+  if (renderers.empty() || !may_reuse(db, job)) return 0;
+  std::vector<int64_t> queued;
+  {
+    sql::Stmt s(db, "SELECT id FROM tasks WHERE job_id = ?1 AND state = 'queued' ORDER BY id");
+    s.bind(1, job);
+    while (s.step()) queued.push_back(s.i64(0));
+  }
+  int reused = 0;
+  for (const int64_t task : queued)
+    for (const std::string& renderer : renderers)
+      if (complete_from_identical_task(*impl_, task, renderer, now)) {
+        ++reused;
+        break;
+      }
+  tx.commit();
+  return reused;
 }
 
 }  // namespace vesper

@@ -35,7 +35,12 @@ inline constexpr const char* kFailed = "failed";
 inline constexpr const char* kCanceled = "canceled";
 inline constexpr const char* kPaused = "paused";
 inline constexpr const char* kTotal = "total";
+// Job lifecycle (docs/farm.md, "Job lifecycle"): times on the server's clock
+inline constexpr const char* kSubmitted = "submitted";
+inline constexpr const char* kStarted = "started";
 inline constexpr const char* kFinished = "finished";
+inline constexpr const char* kEta = "eta";
+inline constexpr const char* kDuration = "duration";
 inline constexpr const char* kJobs = "jobs";
 inline constexpr const char* kJob = "job";
 inline constexpr const char* kTasks = "tasks";

@@ -48,21 +48,22 @@ VESPER_JSON_FIELDS(JobCounts, required(f::kQueued, &JobCounts::queued),
                    required(f::kFailed, &JobCounts::failed),
                    required(f::kCanceled, &JobCounts::canceled),
                    required(f::kPaused, &JobCounts::paused))
-VESPER_JSON_FIELDS(JobSummary, required(f::kId, &JobSummary::id),
-                   required(f::kName, &JobSummary::name),
-                   required(f::kPriority, &JobSummary::priority),
-                   required(f::kState, &JobSummary::state),
-                   required(f::kCounts, &JobSummary::counts),
-                   required(f::kTotal, &JobSummary::total),
-                   required(f::kFinished, &JobSummary::finished))
-VESPER_JSON_FIELDS(JobList, required(f::kJobs, &JobList::jobs))
+VESPER_JSON_FIELDS(
+    JobSummary, required(f::kId, &JobSummary::id), required(f::kName, &JobSummary::name),
+    required(f::kPriority, &JobSummary::priority), required(f::kState, &JobSummary::state),
+    required(f::kCounts, &JobSummary::counts), required(f::kTotal, &JobSummary::total),
+    optional(f::kSubmitted, &JobSummary::submitted), optional(f::kStarted, &JobSummary::started),
+    optional(f::kFinished, &JobSummary::finished), optional(f::kEta, &JobSummary::eta))
+VESPER_JSON_FIELDS(JobList, required(f::kJobs, &JobList::jobs), optional(f::kNow, &JobList::now))
 VESPER_JSON_FIELDS(
     TaskInfo, required(f::kId, &TaskInfo::id), required(f::kJobId, &TaskInfo::job_id),
     required(f::kFrame, &TaskInfo::frame), required(f::kSampleBegin, &TaskInfo::sample_begin),
     required(f::kSampleEnd, &TaskInfo::sample_end), required(f::kState, &TaskInfo::state),
     required(f::kAttempts, &TaskInfo::attempts), required(f::kWorker, &TaskInfo::worker),
     required(f::kResult, &TaskInfo::result), required(f::kHasLog, &TaskInfo::has_log),
-    optional(f::kProgress, &TaskInfo::progress), optional(f::kReusedFrom, &TaskInfo::reused_from))
+    optional(f::kProgress, &TaskInfo::progress), optional(f::kReusedFrom, &TaskInfo::reused_from),
+    optional(f::kStarted, &TaskInfo::started), optional(f::kFinished, &TaskInfo::finished),
+    optional(f::kDuration, &TaskInfo::duration))
 VESPER_JSON_FIELDS(JobActionResponse, required(f::kJob, &JobActionResponse::job),
                    optional(f::kRequeued, &JobActionResponse::requeued))
 VESPER_JSON_FIELDS(FrameInfo, required(f::kFrame, &FrameInfo::frame),
@@ -90,10 +91,11 @@ VESPER_JSON_FIELDS(BlobStored, required(f::kSha256, &BlobStored::sha256),
 
 namespace {
 // The fields JobDetail adds to its summary's (one flat object on the wire).
-constexpr auto kJobDetailFields = std::tuple{
-    required(f::kTasks, &JobDetail::tasks),
-    required(f::kBlockedWorkers, &JobDetail::blocked_workers),
-    optional(f::kFrames, &JobDetail::frames), optional(f::kTasksNext, &JobDetail::tasks_next)};
+constexpr auto kJobDetailFields =
+    std::tuple{required(f::kTasks, &JobDetail::tasks),
+               required(f::kBlockedWorkers, &JobDetail::blocked_workers),
+               optional(f::kFrames, &JobDetail::frames),
+               optional(f::kTasksNext, &JobDetail::tasks_next), optional(f::kNow, &JobDetail::now)};
 constexpr const char* kFrameStates[] = {"pending", "ready", "failed"};  // by FrameState
 }  // namespace
 

@@ -60,19 +60,26 @@ struct JobCounts {
   int queued = 0, leased = 0, done = 0, failed = 0, canceled = 0, paused = 0;
 };
 
-// A job in GET /jobs and at the top of GET /jobs/{id}.
+// A job in GET /jobs and at the top of GET /jobs/{id}. Times are the
+// server's clock (seconds since the Unix epoch), left out when unset.
 struct JobSummary {
   int64_t id = 0;
   std::string name;
   int priority = 0;
-  std::string state;  // "active", "paused", "canceled"
+  std::string state;  // "active", "paused", "done", "failed", "canceled"
   JobCounts counts;
   int total = 0;
-  bool finished = false;  // nothing queued, leased or paused
+  double submitted = 0;
+  std::optional<double> started;   // first task leased or reused
+  std::optional<double> finished;  // reached done, failed or canceled
+  std::optional<double> eta;       // seconds left (an estimate), while active
+  // Done, failed or canceled: nothing more will happen to the job.
+  bool ended() const { return state == "done" || state == "failed" || state == "canceled"; }
 };
 
 struct JobList {
   std::vector<JobSummary> jobs;
+  double now = 0;  // the server's clock, to compare the jobs' times with
 };
 
 // A task in GET /jobs/{id}.
@@ -88,6 +95,8 @@ struct TaskInfo {
   bool has_log = false;
   std::optional<double> progress;  // leased tasks whose heartbeat the server has seen
   int64_t reused_from = 0;         // 0: rendered (left out of the JSON)
+  // The last attempt: leased, ended, and how long it took (once ended).
+  std::optional<double> started, finished, duration;
 };
 
 // A frame in GET /jobs/{id}/frames.
@@ -112,6 +121,7 @@ struct JobDetail {
   std::vector<std::string> blocked_workers;  // worker ids on the job's blocklist
   std::vector<FrameInfo> frames;             // as GET /jobs/{id}/frames lists them
   std::optional<int64_t> tasks_next;         // more tasks: the next page's tasks_after
+  double now = 0;                            // the server's clock
 };
 
 // POST /jobs/{id}/cancel|pause|resume|retry-failed

@@ -38,7 +38,8 @@ VESPER_JSON_FIELDS(HeartbeatRequest, required(f::kLeaseId, &HeartbeatRequest::le
                    required(f::kProgress, &HeartbeatRequest::progress))
 VESPER_JSON_FIELDS(HeartbeatResponse, required(f::kAnswer, &HeartbeatResponse::answer))
 VESPER_JSON_FIELDS(CompleteRequest, required(f::kLeaseId, &CompleteRequest::lease_id),
-                   required(f::kResult, &CompleteRequest::result))
+                   required(f::kResult, &CompleteRequest::result),
+                   optional(f::kLog, &CompleteRequest::log))
 VESPER_JSON_FIELDS(FailRequest, required(f::kLeaseId, &FailRequest::lease_id),
                    required(f::kLog, &FailRequest::log))
 VESPER_JSON_FIELDS(OkResponse, required(f::kOk, &OkResponse::ok))

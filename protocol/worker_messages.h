@@ -82,8 +82,8 @@ struct HeartbeatRequest {
   std::string lease_id;
   double progress = 0;  // 0..1
 };
-// "keep_running" (the lease is extended) or "stop" (the job was canceled or
-// paused: drop the task).
+// "keep_running" (the lease is extended; a paused job's running tasks
+// finish) or "stop" (the job was canceled: kill the render, drop the task).
 enum class HeartbeatAnswer { KeepRunning, Stop };
 struct HeartbeatResponse {
   HeartbeatAnswer answer = HeartbeatAnswer::KeepRunning;
@@ -93,6 +93,9 @@ struct HeartbeatResponse {
 struct CompleteRequest {
   std::string lease_id;
   std::string result;  // SHA-256 of the result blob
+  // Tail of the render's log, kept as the task's log (the server keeps the
+  // last 16 KiB); optional: a worker that sends none still completes.
+  std::string log;
 };
 
 // POST /fail

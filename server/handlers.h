@@ -4,6 +4,7 @@
 // holds the handlers.
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "server/http_exchange.h"
 
@@ -28,6 +29,12 @@ struct JobHandlerDeps {
   const LeaseTracker& leases;  // progress of leased tasks
   const FrameMerger& merger;   // failed merges, for the frames' states
   ServerClock& clock;
+  // The renderer builds trusted for result reuse: a new job's tasks
+  // identical to tasks one of them rendered are done at submit.
+  std::vector<std::string> reusable_renderers;
+  // Tasks were completed (at submit, by reuse): frames may wait for a merge.
+  std::function<void()> tasks_completed;
+  ServerCounters& counters;  // tasks reused at submit
 };
 void add_job_handlers(HandlerTable& table, const JobHandlerDeps& deps);
 

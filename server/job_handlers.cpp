@@ -19,6 +19,7 @@
 #include "server/frame_merger.h"
 #include "server/lease_tracker.h"
 #include "server/locked_store.h"
+#include "server/metrics.h"
 #include "server/requests.h"
 #include "server/server_clock.h"
 
@@ -28,19 +29,28 @@ namespace {
 using protocol::Endpoint;
 using protocol::JobAction;
 
-protocol::JobSummary to_wire(const JobSummary& j) {
-  return {j.id,
-          j.name,
-          j.priority,
-          to_string(j.state),
-          {j.queued, j.leased, j.done, j.failed, j.canceled, j.paused},
-          j.total(),
-          j.finished()};
+protocol::JobSummary to_wire(const JobSummary& j, double now) {
+  protocol::JobSummary out;
+  out.id = j.id;
+  out.name = j.name;
+  out.priority = j.priority;
+  out.state = to_string(j.state);
+  out.counts = {j.queued, j.leased, j.done, j.failed, j.canceled, j.paused};
+  out.total = j.total();
+  out.submitted = j.submitted_at;
+  out.started = j.started_at;
+  out.finished = j.finished_at;
+  out.eta = estimate_eta(j, now);
+  return out;
 }
 
 protocol::TaskInfo to_wire(const Task& t) {
-  return {t.id,       t.job_id, t.frame,  t.sample_begin, t.sample_end, to_string(t.state),
-          t.attempts, t.worker, t.result, !t.log.empty(), std::nullopt, t.reused_from};
+  const std::optional<double> duration =
+      t.started && t.finished ? std::optional(std::max(0.0, *t.finished - *t.started))
+                              : std::nullopt;
+  return {t.id,       t.job_id,   t.frame,  t.sample_begin, t.sample_end, to_string(t.state),
+          t.attempts, t.worker,   t.result, !t.log.empty(), std::nullopt, t.reused_from,
+          t.started,  t.finished, duration};
 }
 
 // "no blob X...: upload it first", at `path` of the request body.
@@ -101,14 +111,24 @@ ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
   if (dry_run)
     return json_response(200, protocol::DryRunResponse{spec.name, int64_t(spec.frames.size()), n});
   const double uploaded_before = BlobStore::now();
+  const double now = d.clock.now();
+  int reused = 0;
   // Under the store's lock, as garbage collection runs: no blob checked here
   // is collected before the job references it.
   const int64_t id = d.store.with([&](JobStore& s) {
     require_blobs(d.blobs, spec);
-    return s.submit(spec, d.clock.now());
+    const int64_t job = s.submit(spec, now);
+    reused = s.reuse_results(job, d.reusable_renderers, now);
+    return job;
   });
   claim_inputs(d.blobs, spec, uploaded_before);
   spdlog::info("job {} '{}' submitted: {} frames, {} tasks", id, spec.name, spec.frames.size(), n);
+  if (reused > 0) {
+    d.counters.tasks_reused(reused);
+    spdlog::info("job {}: {} of {} tasks done at once with identical tasks' results", id, reused,
+                 n);
+    d.tasks_completed();  // frames of several tasks to merge, outputs' noise to read
+  }
   ApiResponse res = json_response(201, protocol::SubmitResponse{id, n});
   res.headers.emplace_back("Location", protocol::api(protocol::job_path(id)));
   return res;
@@ -116,8 +136,9 @@ ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
 
 ApiResponse list(const JobHandlerDeps& d, const ApiRequest&) {
   protocol::JobList out;
+  out.now = d.clock.now();
   d.store.read([&](const JobStore& s) {
-    for (const auto& j : s.jobs()) out.jobs.push_back(to_wire(j));
+    for (const auto& j : s.jobs()) out.jobs.push_back(to_wire(j, out.now));
   });
   return json_response(200, out);
 }
@@ -144,10 +165,11 @@ ApiResponse get(const JobHandlerDeps& d, const ApiRequest& req) {
   const int64_t limit =
       int_query(req, protocol::kTasksLimitParam, 1, protocol::kMaxTaskPage, protocol::kMaxTaskPage);
   protocol::JobDetail out;
+  out.now = d.clock.now();
   std::vector<Task> tasks;
   std::vector<FrameStatus> frames;
   d.store.read([&](const JobStore& s) {
-    out.summary = to_wire(require_job(s, id));
+    out.summary = to_wire(require_job(s, id), out.now);
     tasks = s.tasks(id, after, size_t(limit) + 1);  // one more: is there a next page?
     out.blocked_workers = s.blocked_workers(id);
     if (tasks.size() > size_t(limit)) {
@@ -178,11 +200,12 @@ ApiResponse get(const JobHandlerDeps& d, const ApiRequest& req) {
 ApiResponse act(const JobHandlerDeps& d, const ApiRequest& req, JobAction action) {
   const int64_t id = id_param(req, 0);
   protocol::JobActionResponse out;
+  const double now = d.clock.now();
   d.store.with([&](JobStore& s) {
     require_job(s, id);
     switch (action) {
       case JobAction::Cancel:
-        s.cancel(id);
+        s.cancel(id, now);
         break;
       case JobAction::Pause:
         s.pause(id);
@@ -194,7 +217,7 @@ ApiResponse act(const JobHandlerDeps& d, const ApiRequest& req, JobAction action
         out.requeued = s.retry_failed(id);
         break;
     }
-    out.job = to_wire(require_job(s, id));
+    out.job = to_wire(require_job(s, id), now);
   });
   spdlog::info("job {}: {}", id, protocol::action_name(action));
   return json_response(200, out);

@@ -242,9 +242,10 @@ protocol::HeartbeatRequest read_heartbeat_request(const std::string& body) {
 
 protocol::CompleteRequest read_complete_request(const std::string& body) {
   return read_body(body, [](JsonReader& o) {
-    o.allow_keys({f::kLeaseId, f::kResult});
+    o.allow_keys({f::kLeaseId, f::kResult, f::kLog});
     return protocol::CompleteRequest{required(o, f::kLeaseId).as_string(),
-                                     sha256_at(o, f::kResult, "the uploaded result blob")};
+                                     sha256_at(o, f::kResult, "the uploaded result blob"),
+                                     optional_string(o, f::kLog)};
   });
 }
 

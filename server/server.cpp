@@ -17,6 +17,7 @@
 #include "server/frame_views.h"
 #include "server/handlers.h"
 #include "server/http_api.h"
+#include "server/job_webhook.h"
 #include "server/lease_tracker.h"
 #include "server/locked_store.h"
 #include "server/metrics.h"
@@ -80,6 +81,7 @@ struct Server::Impl {
   LeaseTracker leases;
   FrameMerger merger;
   FrameViews views;
+  std::unique_ptr<JobWebhook> webhook;  // null: no [server] webhook_url
   HttpApi http;  // last: stopped (and destroyed) before what its handlers use
   int bound_port = 0;
   bool started = false, stopped = false;
@@ -98,15 +100,26 @@ struct Server::Impl {
         merger(FrameMergerConfig{config.data_dir, config.vesper_binary, config.merge_retry_seconds},
                store, blobs, clock),
         views(config.data_dir / "monitor-cache"),
+        webhook(config.webhook_url.empty()
+                    ? nullptr
+                    : std::make_unique<JobWebhook>(WebhookOptions{config.webhook_url}, store)),
         http(config, tokens, counters) {}
+
+  // Tasks were completed: frames may wait for a merge, a job may have ended.
+  void tasks_completed() {
+    merger.wake();
+    if (webhook) webhook->wake();
+  }
 
   HandlerTable handlers() {
     HandlerTable table;
-    add_job_handlers(table, {store, blobs, leases, merger, clock});
+    add_job_handlers(table, {store, blobs, leases, merger, clock,
+                             std::vector<std::string>(trusted.begin(), trusted.end()),
+                             [this] { tasks_completed(); }, counters});
     add_worker_handlers(
         table,
         {store, blobs, workers, leases, counters, clock, config.lease_seconds, config.task_timeout,
-         [this] { merger.wake(); }, config.verify_results ? &expectations : nullptr,
+         [this] { tasks_completed(); }, config.verify_results ? &expectations : nullptr,
          [this](const std::string& r) { return !r.empty() && trusted.count(r) > 0; }});
     add_frame_handlers(table, {store, blobs, merger, views});
     add_blob_handlers(table, blobs);
@@ -139,6 +152,10 @@ int Server::start() {
   s.leases.start_reaper(s.config.reaper_interval > 0 ? s.config.reaper_interval
                                                      : std::min(5.0, s.config.lease_seconds / 4));
   s.merger.start();
+  if (s.webhook)
+    s.webhook->start();
+  else  // without a webhook, jobs that end are not announced later, when one is set
+    s.store.with([](JobStore& st) { st.mark_all_announced(); });
   spdlog::info("vesper server on http://{}:{} (data {})", s.config.host, s.bound_port,
                s.config.data_dir.string());
   return s.bound_port;
@@ -158,6 +175,7 @@ void Server::stop() {
   s.http.stop();
   s.leases.stop_reaper();
   s.merger.join();
+  if (s.webhook) s.webhook->stop();
   try {
     s.workers.save();
   } catch (const std::exception& e) {

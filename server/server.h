@@ -80,6 +80,9 @@ struct ServerConfig {
   // Seconds a blob uploaded but not yet referenced by any job (a client
   // uploads before it submits) survives garbage collection.
   double blob_grace_seconds = 3600;
+  // Every job that ends (done, failed, canceled) is announced with a POST of
+  // JSON to this URL (server/job_webhook.h). Empty: no webhook.
+  std::string webhook_url;
 };
 
 class Server {

@@ -26,7 +26,8 @@ namespace {
 using protocol::Endpoint;
 namespace f = protocol::field;
 
-constexpr size_t kMaxLogTail = 64 * 1024;
+constexpr size_t kMaxLogTail = 64 * 1024;      // of a failure's log: why it failed
+constexpr size_t kMaxDoneLogTail = 16 * 1024;  // of a done task's: every task keeps one
 
 [[noreturn]] void stale(const std::string& lease_id) {
   throw ApiError(409,
@@ -103,8 +104,7 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
   out.spp = l->spp;
   for (const Asset& a : l->assets) out.assets.push_back({a.name, a.blob});
   const Task& task = l->task;
-  out.task = {task.id,           task.job_id,     task.frame,
-              task.sample_begin, task.sample_end, task.attempts + 1};
+  out.task = {task.id, task.job_id, task.frame, task.sample_begin, task.sample_end, task.attempts};
   out.noise_target = l->budget.noise_target;
   out.min_spp = l->budget.min_spp;
   out.time_limit = l->budget.time_limit;
@@ -151,7 +151,8 @@ void verify_result(const WorkerHandlerDeps& d, const protocol::CompleteRequest& 
 }
 
 ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
-  const auto r = read_complete_request(req.body);
+  auto r = read_complete_request(req.body);
+  r.log = utf8_tail(r.log, kMaxDoneLogTail);
   const auto result_file = d.blobs.file(r.result);
   if (!result_file)
     throw ApiError(400,
@@ -165,7 +166,7 @@ ApiResponse complete(const WorkerHandlerDeps& d, const ApiRequest& req) {
   const double uploaded_before = BlobStore::now();
   const double t = d.clock.now();
   const bool done =
-      d.store.with([&](JobStore& s) { return s.complete(r.lease_id, r.result, t, noise); });
+      d.store.with([&](JobStore& s) { return s.complete(r.lease_id, r.result, t, noise, r.log); });
   d.leases.note(r.lease_id, t, true);
   if (!done) stale(r.lease_id);
   d.blobs.claim({r.result}, uploaded_before);  // the task references it now

@@ -25,7 +25,9 @@ size_t write_file(char* p, size_t size, size_t n, void* user) {
 struct Headers {
   curl_slist* list = nullptr;
   ~Headers() { curl_slist_free_all(list); }
-  void add(const std::string& h) { list = curl_slist_append(list, h.c_str()); }
+  void add(const std::string& h) {
+    if (!h.empty()) list = curl_slist_append(list, h.c_str());
+  }
 };
 
 // Resets the reused handle for a request to `url` (libcurl copies it) with
@@ -42,7 +44,7 @@ CURL* start(void* handle, const std::string& url, const Headers& headers) {
 
 HttpClient::HttpClient(std::string base_url, std::string token, double timeout_seconds)
     : base_(std::move(base_url)),
-      auth_header_("Authorization: Bearer " + token),
+      auth_header_(token.empty() ? std::string() : "Authorization: Bearer " + token),
       timeout_(timeout_seconds) {
   while (!base_.empty() && base_.back() == '/') base_.pop_back();
   global_init();

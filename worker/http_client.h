@@ -17,7 +17,9 @@ struct HttpResponse {
 
 class HttpClient {
  public:
-  // base_url: "http://host:port"; paths given to the calls start with '/'.
+  // base_url: "http://host:port"; paths given to the calls start with '/'
+  // (or are empty: base_url is the whole URL). An empty token sends no
+  // Authorization header (the server's webhook, server/job_webhook.h).
   HttpClient(std::string base_url, std::string token, double timeout_seconds = 60);
   ~HttpClient();
   HttpClient(const HttpClient&) = delete;

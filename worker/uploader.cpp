@@ -26,10 +26,10 @@ Upload upload_result(ServerApi& api, const std::filesystem::path& file, int64_t 
 }
 
 Completion complete_task(ServerApi& api, const std::string& lease_id, const std::string& result,
-                         int64_t task_id, LeaseRetry& retry) {
+                         const std::string& log, int64_t task_id, LeaseRetry& retry) {
   const HttpResponse c = retry.call(
       [&] {
-        return api.complete({lease_id, result});
+        return api.complete({lease_id, result, log});
       },
       "complete", task_id);
   if (c.status == 200) return Completion::Completed;

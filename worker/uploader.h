@@ -30,8 +30,8 @@ enum class Completion {
   GaveUp,  // the server stayed away or in trouble for as long as the lease could live
 };
 
-// POST /complete with the result blob.
+// POST /complete with the result blob and the render's log tail.
 Completion complete_task(ServerApi& api, const std::string& lease_id, const std::string& result,
-                         int64_t task_id, LeaseRetry& retry);
+                         const std::string& log, int64_t task_id, LeaseRetry& retry);
 
 }  // namespace vesper::worker_detail

@@ -34,7 +34,8 @@ using namespace worker_detail;
 
 namespace {
 
-constexpr size_t kLogTail = 64 * 1024;  // what the server keeps of a failure log
+constexpr size_t kLogTail = 64 * 1024;      // what the server keeps of a failure log
+constexpr size_t kDoneLogTail = 16 * 1024;  // and of a done task's log
 
 std::string hostname() {
   char buf[256] = {0};
@@ -90,10 +91,10 @@ struct Worker::Impl {
   std::optional<fs::path> fetch(const protocol::LeaseResponse& l, LeaseRetry& retry);
   void keep_cache_under_cap(const protocol::LeaseResponse& l);
   std::optional<fs::path> run(const protocol::LeaseResponse& l, const fs::path& task_dir,
-                              double& seconds, LeaseRetry& retry);
+                              double& seconds, std::string& log, LeaseRetry& retry);
   bool heartbeat(const protocol::LeaseResponse& l, double progress, LeaseRetry& retry);
   void upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out, double seconds,
-                           LeaseRetry& retry);
+                           const std::string& log, LeaseRetry& retry);
   void fail(const protocol::LeaseResponse& l, const std::string& log);
   void drop(const protocol::LeaseResponse& l, const std::string& why);
 };
@@ -241,9 +242,10 @@ void Worker::Impl::work_on(const protocol::LeaseResponse& l) {
   const std::optional<fs::path> task_dir = fetch(l, retry);
   if (!task_dir) return;
   double seconds = 0;
-  const std::optional<fs::path> out = run(l, *task_dir, seconds, retry);
+  std::string log;  // the render's log tail, kept by the server as the task's log
+  const std::optional<fs::path> out = run(l, *task_dir, seconds, log, retry);
   if (!out) return;
-  upload_and_complete(l, *out, seconds, retry);
+  upload_and_complete(l, *out, seconds, log, retry);
 }
 
 // Marks the task's blobs used now, then evicts the least recently used
@@ -291,7 +293,7 @@ std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l, Le
 // nullopt when the task was dropped or failed (then reported and cleaned up).
 std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
                                           const fs::path& task_dir, double& seconds,
-                                          LeaseRetry& retry) {
+                                          std::string& log, LeaseRetry& retry) {
   const fs::path out =
       cfg.cache_dir / "tmp" / ("render-" + unique_name() + render_output_extension(l));
   const std::vector<std::string> argv = render_command(l, cfg, task_dir / "scene.json", out);
@@ -336,11 +338,12 @@ std::optional<fs::path> Worker::Impl::run(const protocol::LeaseResponse& l,
     return std::nullopt;
   }
   durations[duration_key] = seconds;
+  log = utf8_tail(r.stderr_tail, kDoneLogTail);
   return out;
 }
 
-// One heartbeat; false when the render must stop ("stop": job canceled or
-// paused; 409: the lease is stale). A transport failure waits for the next
+// One heartbeat; false when the render must stop ("stop": job canceled;
+// 409: the lease is stale). A transport failure waits for the next
 // beat; an accepted beat renews the lease (`retry`'s deadline).
 bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress, LeaseRetry& retry) {
   const HttpResponse hb = api->heartbeat({l.lease_id, progress});
@@ -365,7 +368,7 @@ bool Worker::Impl::heartbeat(const protocol::LeaseResponse& l, double progress, 
 
 // Upload the result (content addressed), then complete; the temp file always goes.
 void Worker::Impl::upload_and_complete(const protocol::LeaseResponse& l, const fs::path& out,
-                                       double seconds, LeaseRetry& retry) {
+                                       double seconds, const std::string& log, LeaseRetry& retry) {
   const Upload up = upload_result(*api, out, l.task.id, retry);
   std::error_code ec;
   fs::remove(out, ec);
@@ -376,7 +379,7 @@ void Worker::Impl::upload_and_complete(const protocol::LeaseResponse& l, const f
       fail(l, "worker: upload of the result failed: " + up.problem);
     return;
   }
-  switch (complete_task(*api, l.lease_id, *up.blob, l.task.id, retry)) {
+  switch (complete_task(*api, l.lease_id, *up.blob, log, l.task.id, retry)) {
     case Completion::Completed:
       spdlog::info("task {}: done in {:.2f} s, result {}", l.task.id, seconds, *up.blob);
       ++self.completed_;

@@ -241,9 +241,10 @@ TEST_F(FarmTest, ResubmittedSceneIsNotRenderedAgain) {
   EXPECT_EQ(count(fetched.out, ".exr"), 3) << fetched.out;
 }
 
-// Pause stops the running render at its next heartbeat; resume finishes the
-// job; `vesper workers` and `vesper status` name the workers.
-TEST_F(FarmTest, PauseResumeAndWorkersFromTheCli) {
+// Pause stops leasing and lets the running render finish (its result is
+// kept, not rendered again); resume finishes the job; `vesper workers` and
+// `vesper status` name the workers.
+TEST_F(FarmTest, PauseLetsTheRunningRenderFinishAndResumeEndsTheJob) {
   const auto config = write_config(10);
   const auto scene = write_scene(48, 36, 800);
   start_server(config);
@@ -252,15 +253,20 @@ TEST_F(FarmTest, PauseResumeAndWorkersFromTheCli) {
   wait_job(id, 60, [](const nlohmann::json& j) { return j.at("counts").at("leased") == 1; });
   const RunResult p = farm(fmt::format("pause {}", id));
   ASSERT_EQ(p.exit_code, 0) << p.err;
-  const auto paused = wait_job(id, 30, [](const nlohmann::json& j) {
-    return j.at("counts").at("paused") == 2 && j.at("state") == "paused";
+  const auto paused = wait_job(id, 60, [](const nlohmann::json& j) {
+    return j.at("counts").at("done") == 1 && j.at("counts").at("paused") == 1;
   });
-  EXPECT_EQ(paused.at("counts").at("leased"), 0) << paused.dump();
+  EXPECT_EQ(paused.at("state"), "paused") << paused.dump();
+  EXPECT_EQ(paused.at("tasks").at(0).at("attempts"), 1) << paused.dump();
+  EXPECT_EQ(count(worker_log("w1"), "killing the render"), 0) << worker_log("w1");
   const RunResult w = farm("workers");
   EXPECT_EQ(w.exit_code, 0) << w.err;
   EXPECT_NE(w.out.find("w1"), std::string::npos) << w.out;
   ASSERT_EQ(farm(fmt::format("resume {}", id)).exit_code, 0);
-  EXPECT_EQ(wait_finished(id, 120).at("counts").at("done"), 2);
+  const auto done = wait_finished(id, 120);
+  EXPECT_EQ(done.at("state"), "done") << done.dump();
+  EXPECT_EQ(done.at("counts").at("done"), 2);
+  EXPECT_EQ(count(worker_log("w1"), "): leased"), 2) << worker_log("w1");
   const RunResult st = farm(fmt::format("status {}", id));
   EXPECT_EQ(st.exit_code, 0) << st.err;
   EXPECT_EQ(count(st.out, " w1"), 2) << st.out;

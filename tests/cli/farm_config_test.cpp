@@ -18,7 +18,7 @@ bool operator==(const FarmServerSettings& a, const FarmServerSettings& b) {
          a.task_timeout == b.task_timeout && a.trusted_renderers == b.trusted_renderers &&
          a.max_connections == b.max_connections && a.header_timeout == b.header_timeout &&
          a.idle_timeout == b.idle_timeout && a.monitor_read_only == b.monitor_read_only &&
-         a.blob_grace_seconds == b.blob_grace_seconds;
+         a.blob_grace_seconds == b.blob_grace_seconds && a.webhook_url == b.webhook_url;
 }
 bool operator==(const FarmWorkerSettings& a, const FarmWorkerSettings& b) {
   return a.server == b.server && a.cache_dir == b.cache_dir &&
@@ -47,13 +47,13 @@ TEST(FarmConfig, ShippedFileEqualsTheBuiltInDefaults) {
 }
 
 TEST(FarmConfig, ShippedFileSetsEveryKey) {
-  // Count `key = value` lines: one per setter (14 server, 8 worker, 10 job, 3 up).
+  // Count `key = value` lines: one per setter (15 server, 8 worker, 10 job, 3 up).
   std::ifstream in(kShipped);
   int keys = 0;
   for (std::string line; std::getline(in, line);)
     if (!line.empty() && line[0] != '#' && line[0] != '[' && line.find(" = ") != std::string::npos)
       ++keys;
-  EXPECT_EQ(keys, 35);
+  EXPECT_EQ(keys, 36);
 }
 
 class FarmConfigErrors : public ::testing::Test {
@@ -86,6 +86,10 @@ TEST_F(FarmConfigErrors, NameTheFileKeyAndProblem) {
   EXPECT_NE(error_of("[worker]\nidle_backoff_min = 9.0\n").find("idle_backoff_min"),
             std::string::npos);
   EXPECT_EQ(error_of("[server]\nport = 9000\n[worker]\nheartbeat_seconds = 1\n"), "");
+  EXPECT_NE(error_of("[server]\nwebhook_url = \"ftp://x\"\n")
+                .find("server.webhook_url: expected an http:// or https:// URL"),
+            std::string::npos);
+  EXPECT_EQ(error_of("[server]\nwebhook_url = \"http://127.0.0.1:9/hook\"\n"), "");
 }
 
 TEST(FarmConfig, FileValuesOverrideDefaults) {

@@ -126,9 +126,12 @@ class FarmTest : public CliTest {
                   << " s; last: " << j.dump();
     return j;
   }
+  // Until the job ended: done, failed or canceled.
   nlohmann::json wait_finished(long long id, double seconds) {
-    return wait_job(id, seconds,
-                    [](const nlohmann::json& j) { return j.at("finished").get<bool>(); });
+    return wait_job(id, seconds, [](const nlohmann::json& j) {
+      const std::string state = j.at("state");
+      return state == "done" || state == "failed" || state == "canceled";
+    });
   }
 
   // Pixels and channel names equal, bit for bit.

@@ -51,7 +51,7 @@ TEST_F(HousekeepingStoreTest, DeleteRefusesQueuedOrRunningWork) {
   EXPECT_EQ(busy.leased, 1);
   ASSERT_TRUE(s.fail(l->lease_id, "boom", 4));  // attempts left: queued again
   EXPECT_EQ(s.delete_job(j), JobStore::DeleteResult::Busy);
-  s.cancel(j);
+  s.cancel(j, 0);
   EXPECT_EQ(s.delete_job(j), JobStore::DeleteResult::Deleted);
   EXPECT_FALSE(s.job(j));
   EXPECT_EQ(rows_of(j), 0);
@@ -68,7 +68,7 @@ TEST_F(HousekeepingStoreTest, ReferencedBlobsAreScenesAssetsResultsAndOutputs) {
   auto refs = s.referenced_blobs();
   std::sort(refs.begin(), refs.end());
   EXPECT_EQ(refs, (std::vector<std::string>{"mesh", "result-a1", "scene-a", "scene-b"}));
-  s.cancel(a);
+  s.cancel(a, 0);
   ASSERT_EQ(s.delete_job(a), JobStore::DeleteResult::Deleted);
   EXPECT_EQ(s.referenced_blobs(), std::vector<std::string>{"scene-b"});
 }
@@ -83,7 +83,7 @@ TEST_F(HousekeepingStoreTest, BlocklistsByWorker) {
   }
   EXPECT_EQ(s.blocklists(), (std::vector<std::pair<std::string, int64_t>>{{"bad", j}}));
   // Deleting the job forgets its blocklist.
-  s.cancel(j);
+  s.cancel(j, 0);
   ASSERT_EQ(s.delete_job(j), JobStore::DeleteResult::Deleted);
   EXPECT_TRUE(s.blocklists().empty());
 }

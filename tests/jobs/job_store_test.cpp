@@ -39,7 +39,7 @@ TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {
   EXPECT_EQ(tasks[2].sample_end, 10);  // the last range is short
   EXPECT_EQ(tasks[3].frame, 2);
   EXPECT_EQ(s.job(j)->queued, 6);
-  EXPECT_EQ(s.schema_version(), 9);
+  EXPECT_EQ(s.schema_version(), 10);
 }
 
 TEST_F(JobStoreTest, LeasesByPriorityThenAgeThenFrame) {
@@ -67,7 +67,7 @@ TEST_F(JobStoreTest, ExpiredLeaseIsRequeuedAndTheLateUploadRefused) {
   const auto again = s.lease("w2", 11);  // expired at 10: requeued and re-leased
   ASSERT_TRUE(again);
   EXPECT_EQ(again->task.id, dead->task.id);
-  EXPECT_EQ(again->task.attempts, 1);
+  EXPECT_EQ(again->task.attempts, 2);                    // every lease counts
   EXPECT_FALSE(s.complete(dead->lease_id, "late", 12));  // fencing
   EXPECT_EQ(s.heartbeat(dead->lease_id, 12), HeartbeatAnswer::StaleLease);
   EXPECT_TRUE(s.complete(again->lease_id, "good", 12));
@@ -222,23 +222,27 @@ TEST_F(JobStoreTest, RenderOverridesAreLeasedAndKeyResultReuse) {
   EXPECT_THROW(s.submit(bad, 10), StoreError);
 }
 
-TEST_F(JobStoreTest, CancelAndPauseStopRunningTasksAtTheNextHeartbeat) {
+// Pause stops leasing and lets running tasks finish (their results are
+// taken); cancel stops running tasks at their next heartbeat.
+TEST_F(JobStoreTest, PauseLetsRunningTasksFinishAndCancelStopsThem) {
   JobStore s(db());
   const int64_t j = s.submit(spec({1, 2, 3}), 0);
   const auto running = s.lease("w", 0);
   EXPECT_TRUE(s.pause(j));
-  EXPECT_EQ(s.heartbeat(running->lease_id, 1), HeartbeatAnswer::Stop);
-  EXPECT_FALSE(s.complete(running->lease_id, "x", 1));
+  EXPECT_EQ(s.heartbeat(running->lease_id, 1), HeartbeatAnswer::KeepRunning);
   EXPECT_FALSE(s.lease("w", 1));
-  EXPECT_EQ(s.job(j)->paused, 3);
+  EXPECT_TRUE(s.complete(running->lease_id, "x", 1));
+  EXPECT_EQ(s.job(j)->paused, 2);
+  EXPECT_EQ(s.job(j)->done, 1);
   EXPECT_TRUE(s.resume(j));
   const auto l = s.lease("w", 2);
   ASSERT_TRUE(l);
-  EXPECT_TRUE(s.cancel(j));
+  EXPECT_TRUE(s.cancel(j, 3));
   EXPECT_EQ(s.heartbeat(l->lease_id, 3), HeartbeatAnswer::Stop);
-  EXPECT_EQ(s.job(j)->canceled, 3);
+  EXPECT_FALSE(s.complete(l->lease_id, "late", 4));
+  EXPECT_EQ(s.job(j)->canceled, 2);
   EXPECT_TRUE(s.job(j)->finished());
-  EXPECT_FALSE(s.cancel(999));
+  EXPECT_FALSE(s.cancel(999, 5));
 }
 
 TEST_F(JobStoreTest, CommittedStateSurvivesReopening) {
@@ -384,7 +388,7 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
 )sql");
   }
   JobStore s(db());
-  EXPECT_EQ(s.schema_version(), 9);
+  EXPECT_EQ(s.schema_version(), 10);
   EXPECT_EQ(s.job(1)->name, "old");
   EXPECT_TRUE(s.assets(1).empty());
   EXPECT_TRUE(s.frame(1, 1)->complete());
@@ -427,8 +431,8 @@ TEST_F(JobStoreTest, RenewedLeasesOutliveTheServersAbsence) {
   EXPECT_EQ(s.expire_leases(150), 0);
   EXPECT_EQ(s.heartbeat(held->lease_id, 150), HeartbeatAnswer::KeepRunning);
   EXPECT_TRUE(s.complete(held->lease_id, "r", 151));
-  EXPECT_EQ(s.tasks(1)[0].attempts, 0);
-  // A lease nobody renews still expires, counted as before.
+  EXPECT_EQ(s.tasks(1)[0].attempts, 1);
+  // A lease nobody renews still expires, and its task is requeued.
   const auto lost = s.lease("w", 200);
   EXPECT_EQ(s.expire_leases(261), 1);
   EXPECT_EQ(s.tasks(1)[1].attempts, 1);

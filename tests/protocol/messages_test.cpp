@@ -68,7 +68,9 @@ TEST(WorkerMessagesTest, SmallMessagesKeepTheirKeys) {
   EXPECT_EQ(json(HeartbeatResponse{HeartbeatAnswer::Stop}).dump(), R"({"answer":"stop"})");
   EXPECT_EQ(round_trip(HeartbeatResponse{HeartbeatAnswer::Stop}).answer, HeartbeatAnswer::Stop);
   EXPECT_THROW(json::parse(R"({"answer":"maybe"})").get<HeartbeatResponse>(), json::exception);
-  EXPECT_EQ(json(CompleteRequest{"L", "R"}).dump(), R"({"lease_id":"L","result":"R"})");
+  EXPECT_EQ(json(CompleteRequest{"L", "R", ""}).dump(), R"({"lease_id":"L","result":"R"})");
+  EXPECT_EQ(json(CompleteRequest{"L", "R", "tail"}).dump(),
+            R"({"lease_id":"L","log":"tail","result":"R"})");  // the render's log, optional
   EXPECT_EQ(json(FailRequest{"L", "log"}).dump(), R"({"lease_id":"L","log":"log"})");
   EXPECT_EQ(json(OkResponse{}).dump(), R"({"ok":true})");
   EXPECT_THROW(json::parse(R"({"lease_id":"L"})").get<CompleteRequest>(), json::exception);
@@ -187,9 +189,10 @@ TEST(JobMessagesTest, AReadyFrameCarriesTheNoiseItReached) {
 
 TEST(JobMessagesTest, JobDetailIsTheSummaryWithTasks) {
   JobDetail d;
-  d.summary = {1, "n", 50, "active", {1, 1, 0, 0, 0, 0}, 2, false};
-  TaskInfo leased{2, 1, 1, 0, 16, "leased", 1, "w", "", false, 0.25, 0};
-  TaskInfo reused{3, 1, 2, 0, 16, "done", 0, "", "R", false, std::nullopt, 9};
+  d.summary = {1, "n", 50, "active", {1, 1, 0, 0, 0, 0}, 2, 5, 6, std::nullopt, 30};
+  TaskInfo leased{2,  1,     1,    0, 16,  "leased",     1,           "w",
+                  "", false, 0.25, 0, 6.5, std::nullopt, std::nullopt};
+  TaskInfo reused{3, 1, 2, 0, 16, "done", 0, "", "R", false, std::nullopt, 9, 7.0, 7.0, 0.0};
   d.tasks = {leased, reused};
   d.blocked_workers = {"w2"};
   const json j = d;
@@ -200,7 +203,17 @@ TEST(JobMessagesTest, JobDetailIsTheSummaryWithTasks) {
   EXPECT_FALSE(j.at("tasks").at(1).contains("progress"));
   EXPECT_EQ(j.at("tasks").at(1).at("reused_from"), 9);
   EXPECT_EQ(j.at("blocked_workers"), json::parse(R"(["w2"])"));
+  // The lifecycle's times: left out when unset.
+  EXPECT_EQ(j.at("submitted"), 5);
+  EXPECT_EQ(j.at("started"), 6);
+  EXPECT_FALSE(j.contains("finished"));
+  EXPECT_EQ(j.at("eta"), 30);
+  EXPECT_EQ(j.at("tasks").at(0).at("started"), 6.5);
+  EXPECT_FALSE(j.at("tasks").at(0).contains("duration"));
+  EXPECT_EQ(j.at("tasks").at(1).at("duration"), 0);
   const JobDetail back = round_trip(d);
+  EXPECT_EQ(back.summary.eta, 30);
+  EXPECT_EQ(back.tasks.at(1).finished, 7);
   EXPECT_EQ(back.summary.name, "n");
   EXPECT_EQ(back.tasks.at(0).progress, 0.25);
   EXPECT_EQ(back.tasks.at(1).reused_from, 9);

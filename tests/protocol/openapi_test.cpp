@@ -207,14 +207,23 @@ TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
 
   const FrameInfo frame{1, FrameState::Ready, 1, 1, "B", "e", 0.01, 40.5, "noise_target"};
   EXPECT_EQ(keys_of(nlohmann::json(frame)), properties(doc, "Frame"));
-  const TaskInfo task{1, 1, 1, 0, 8, "done", 1, "w", "R", true, 0.5, 2};
+  const TaskInfo task{1, 1, 1, 0, 8, "done", 1, "w", "R", true, 0.5, 2, 10.0, 12.5, 2.5};
   EXPECT_EQ(keys_of(nlohmann::json(task)), properties(doc, "Task"));
   JobDetail detail;
+  detail.summary.submitted = 9;
+  detail.summary.started = 10;
+  detail.summary.finished = 20;
+  detail.summary.eta = 5;
   detail.tasks = {task};
   detail.frames = {frame};
   detail.tasks_next = 1;
+  detail.now = 21;
   EXPECT_EQ(keys_of(nlohmann::json(detail)), properties(doc, "JobDetail", "JobSummary"));
   EXPECT_EQ(keys_of(nlohmann::json(detail.summary)), properties(doc, "JobSummary"));
+  const JobList list{{detail.summary}, 21};
+  EXPECT_EQ(keys_of(nlohmann::json(list)), properties(doc, "JobList"));
+  EXPECT_EQ(keys_of(nlohmann::json(CompleteRequest{"L", "R", "log"})),
+            properties(doc, "CompleteRequest"));
 }
 
 // The housekeeping messages (ops16): a worker with its state, current task

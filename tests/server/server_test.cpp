@@ -231,7 +231,8 @@ TEST_F(ServerTest, DryRunValidatesAndCreatesNothing) {
 }
 
 // Leases carry the worker's renderer id (sha256 of its executable); an
-// identical task already done by that renderer is completed, not leased.
+// identical task already done by a trusted renderer is completed at submit,
+// never leased.
 TEST_F(ServerTest, LeaseWithARendererIdReusesIdenticalResults) {
   const std::string renderer(64, 'a');
   ServerConfig c = config();
@@ -248,6 +249,7 @@ TEST_F(ServerTest, LeaseWithARendererIdReusesIdenticalResults) {
   const std::string result = put_blob("the frame");
   post_ok("/complete", {{"lease_id", l.at("lease_id")}, {"result", result}}, wrk());
   const int64_t second = submit(1);  // same scene blob, frames, spp
+  EXPECT_EQ(get_ok("/jobs/" + std::to_string(second)).at("state"), "done") << "at submit";
   auto none = post("/lease", {{"worker_id", w}, {"renderer", renderer}}, wrk());
   ASSERT_TRUE(none);
   EXPECT_EQ(none->status, 204) << "the identical task should not be leased";
@@ -315,11 +317,12 @@ TEST_F(ServerTest, FullWorkerProtocol) {
 
   const json j = get_ok("/jobs/" + std::to_string(job));
   EXPECT_EQ(j.at("counts").at("done"), 4);
-  EXPECT_EQ(j.at("finished"), true);
+  EXPECT_EQ(j.at("state"), "done");
+  EXPECT_TRUE(j.contains("finished"));
   for (size_t i = 0; i < 4; ++i) EXPECT_EQ(j.at("tasks")[i].at("result"), results[i]);
   const json jobs = get_ok("/jobs").at("jobs");
   ASSERT_EQ(jobs.size(), 1u);
-  EXPECT_EQ(jobs[0].at("state"), "active");
+  EXPECT_EQ(jobs[0].at("state"), "done");
 
   // Workers list with last-seen times.
   const json workers = get_ok("/workers").at("workers");
@@ -387,7 +390,9 @@ TEST_F(ServerTest, StaleLeaseIsRefusedAndNeverTouchesTheCommittedResult) {
   EXPECT_EQ(j.at("tasks")[0].at("result"), rb);
 }
 
-TEST_F(ServerTest, CancelAndPauseTakeEffectAtTheNextHeartbeat) {
+// Cancel stops the running render at its next heartbeat; pause stops
+// leasing and lets running tasks finish (their results are taken).
+TEST_F(ServerTest, CancelStopsAtTheNextHeartbeatAndPauseLetsRunningTasksFinish) {
   start();
   const int64_t job = submit(2);
   const std::string w = register_worker("w");
@@ -402,13 +407,17 @@ TEST_F(ServerTest, CancelAndPauseTakeEffectAtTheNextHeartbeat) {
             409);
   EXPECT_EQ(post("/lease", {{"worker_id", w}}, wrk())->status, 204);
 
-  const int64_t job2 = submit(1);
+  const int64_t job2 = submit(2);
   const json l2 = lease(w);
-  post_ok("/jobs/" + std::to_string(job2) + "/pause", json::object(), sub());
-  EXPECT_EQ(post_ok("/heartbeat", {{"lease_id", l2.at("lease_id")}}, wrk()).at("answer"), "stop");
+  const json p = post_ok("/jobs/" + std::to_string(job2) + "/pause", json::object(), sub());
+  EXPECT_EQ(p.at("job").at("state"), "paused");
+  EXPECT_EQ(post_ok("/heartbeat", {{"lease_id", l2.at("lease_id")}}, wrk()).at("answer"),
+            "keep_running");
   EXPECT_EQ(post("/lease", {{"worker_id", w}}, wrk())->status, 204);
+  post_ok("/complete", {{"lease_id", l2.at("lease_id")}, {"result", put_blob("kept")}}, wrk());
   const json r = post_ok("/jobs/" + std::to_string(job2) + "/resume", json::object(), sub());
   EXPECT_EQ(r.at("job").at("counts").at("queued"), 1);
+  EXPECT_EQ(r.at("job").at("counts").at("done"), 1);
   EXPECT_EQ(lease(w).at("task").at("job_id"), job2);
 }
 
@@ -438,7 +447,7 @@ TEST_F(ServerTest, RestartOnTheSameDataDirKeepsCommittedStateAndLiveLeases) {
   post_ok("/complete", {{"lease_id", l2.at("lease_id")}, {"result", r2}}, wrk());
   EXPECT_EQ(post("/lease", {{"worker_id", w}}, wrk())->status, 204);
   j = get_ok("/jobs/" + std::to_string(job));
-  EXPECT_EQ(j.at("finished"), true);
+  EXPECT_EQ(j.at("state"), "done");
   EXPECT_EQ(j.at("tasks")[1].at("result"), r2);
 }
 
