@@ -115,10 +115,12 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   sql::Transaction tx(db);
   const RenderBudget& b = spec.budget;
   sql::Stmt(db,
-            "INSERT INTO jobs(name, scene, spp, priority, max_attempts, state, created, "
+            "INSERT INTO jobs(id, name, scene, spp, priority, max_attempts, state, created, "
             "inputs_key, noise_target, min_spp, time_limit, aovs, layer_variance, seed, scale, "
             "task_timeout) "
-            "VALUES(?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15)")
+            // Above every id ever used, deleted ones too (migration 0011).
+            "VALUES((SELECT id + 1 FROM job_id_high_water), ?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, "
+            "?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15)")
       .bind(1, spec.name)
       .bind(2, spec.scene)
       .bind(3, int64_t(spec.spp))

@@ -36,6 +36,23 @@ class HousekeepingStoreTest : public ::testing::Test {
   test::TempDir dir_{"housekeeping"};
 };
 
+TEST_F(HousekeepingStoreTest, ADeletedJobsIdIsNeverGivenAgain) {
+  int64_t newest = 0;
+  {
+    JobStore s(db());
+    s.submit(spec("a"), 0);
+    newest = s.submit(spec("b"), 0);
+    s.cancel(newest, 1);
+    ASSERT_EQ(s.delete_job(newest), JobStore::DeleteResult::Deleted);
+    EXPECT_GT(s.submit(spec("c"), 2), newest);  // SQLite alone would reuse it
+    newest = s.jobs().back().id;
+    s.cancel(newest, 3);
+    ASSERT_EQ(s.delete_job(newest), JobStore::DeleteResult::Deleted);
+  }
+  JobStore reopened(db());  // the high-water mark is in the file
+  EXPECT_GT(reopened.submit(spec("d"), 4), newest);
+}
+
 TEST_F(HousekeepingStoreTest, DeleteRefusesQueuedOrRunningWork) {
   JobStore s(db());
   const int64_t j = s.submit(spec("scene"), 0);
