@@ -154,16 +154,14 @@ struct SubmitCommandOptions {
 };
 int run_submit(const SubmitCommandOptions& options);
 
-// vesper status|cancel|pause|resume|retry|logs|fetch|workers.
+// vesper status|cancel|pause|resume|retry|logs|fetch|workers|delete.
 struct JobCommandOptions {
   FarmOptions farm;
   std::optional<long long> job;
-  std::string output_dir;     // fetch
-  bool json = false;          // status: the server's JSON
-  bool prune = false;         // workers: remove offline and lost ones
-  bool cancel_first = false;  // delete: cancel an active job first
   std::string output_dir;         // fetch
   bool json = false;              // status: the server's JSON
+  bool prune = false;             // workers: remove offline and lost ones
+  bool cancel_first = false;      // delete: cancel an active job first
   std::optional<long long> task;  // logs --task: one task's log
 };
 int run_status(const JobCommandOptions& options);

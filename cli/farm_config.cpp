@@ -107,7 +107,7 @@ std::map<std::string, std::map<std::string, Setter>> setters(FarmSettings& s) {
         {"task_timeout", number(s.server.task_timeout, 0, 30 * 86400)},
         {"trusted_renderers", sha256_list(s.server.trusted_renderers)},
         {"monitor_read_only", boolean(s.server.monitor_read_only)},
-        {"blob_grace_seconds", number(s.server.blob_grace_seconds, 0, 365 * 86400.0)}}},
+        {"blob_grace_seconds", number(s.server.blob_grace_seconds, 0, 365 * 86400.0)},
         {"webhook_url", optional_url(s.server.webhook_url)}}},
       {"worker",
        {{"server", str(s.worker.server)},

@@ -5,12 +5,18 @@
 #include <spdlog/spdlog.h>
 
 #include <exception>
+#include <map>
+#include <string>
 
 #include "cli/commands.h"
 #include "cli/farm_client.h"
 #include "cli/farm_config.h"
 
 namespace vesper::cli {
+
+// worker id -> name, for tables people read (escaped: names come from
+// whoever holds a worker token, and an old server did not refuse ESC or CR).
+std::map<std::string, std::string> worker_names(FarmClient& c);
 
 template <typename Body>
 int with_client(const JobCommandOptions& o, Body&& body) {

@@ -83,8 +83,8 @@ void print_frame_noise(const std::vector<protocol::FrameInfo>& frames) {
   }
 }
 
-// worker id -> name, for tables people read (escaped: names come from
-// whoever holds a worker token, and an old server did not refuse ESC or CR).
+}  // namespace
+
 std::map<std::string, std::string> worker_names(FarmClient& c) {
   std::map<std::string, std::string> names;
   for (const auto& w :
@@ -92,6 +92,8 @@ std::map<std::string, std::string> worker_names(FarmClient& c) {
     names[w.worker_id] = escape_control_characters(w.name);
   return names;
 }
+
+namespace {
 
 // How long a task's last attempt took, or has run so far ("+": still running).
 std::string task_duration(const protocol::TaskInfo& t, double now) {
