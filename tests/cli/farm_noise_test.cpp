@@ -12,8 +12,12 @@ namespace vesper::test {
 namespace {
 
 // A job's first frame is ready (a split frame after its merge).
+// Ready, and its noise read: the server reads an output's metadata after
+// recording it (a merged frame's a moment later), so "ready" alone races it.
 bool first_frame_ready(const nlohmann::json& job) {
-  return job.contains("frames") && job.at("frames").at(0).at("state") == "ready";
+  if (!job.contains("frames")) return false;
+  const nlohmann::json& f = job.at("frames").at(0);
+  return f.at("state") == "ready" && f.contains("noise_reached");
 }
 
 }  // namespace
