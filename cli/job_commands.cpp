@@ -120,7 +120,7 @@ int print_all_logs(FarmClient& c, int64_t job) {
   int shown = 0;
   for (const protocol::TaskInfo& t : j.tasks) {
     if (!t.has_log) continue;
-    std::printf("=== task %lld (frame %d, samples [%d, %d)), %s after %d attempts ===\n%s\n",
+    std::printf("=== task %lld (frame %d, samples [%d, %d)), %s, attempts: %d ===\n%s\n",
                 static_cast<long long>(t.id), t.frame, t.sample_begin, t.sample_end,
                 t.state.c_str(), t.attempts,
                 printable_log(c.get_text(protocol::task_log_path(job, t.id))).c_str());

@@ -144,7 +144,7 @@ TEST_F(FarmTest, StatusAndLogsShowHowJobsEnded) {
   ASSERT_EQ(logs.exit_code, 0) << logs.err;
   const std::string first = j.at("tasks").at(0).at("id").dump();
   EXPECT_NE(logs.out.find("=== task " + first + " (frame 1"), std::string::npos) << logs.out;
-  EXPECT_NE(logs.out.find("done after 1 attempts"), std::string::npos) << logs.out;
+  EXPECT_NE(logs.out.find("done, attempts: 1 ==="), std::string::npos) << logs.out;
   const RunResult one_log = farm(fmt::format("logs {} --task {}", id, first));
   ASSERT_EQ(one_log.exit_code, 0) << one_log.err;
   EXPECT_FALSE(one_log.out.empty());
