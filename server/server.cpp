@@ -125,8 +125,8 @@ struct Server::Impl {
     add_blob_handlers(table, blobs);
     add_ops_handlers(table, {store, workers, counters});
     add_monitor_handlers(table, tokens);
-    add_housekeeping_handlers(
-        table, {store, blobs, views, workers, clock, config.lease_seconds, config.blob_grace_seconds});
+    add_housekeeping_handlers(table, {store, blobs, views, workers, clock, config.lease_seconds,
+                                      config.blob_grace_seconds});
     return table;
   }
 };
