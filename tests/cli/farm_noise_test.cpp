@@ -12,12 +12,12 @@ namespace vesper::test {
 namespace {
 
 // A job's first frame is ready (a split frame after its merge).
-// Ready, and its noise read: the server reads an output's metadata after
-// recording it (a merged frame's a moment later), so "ready" alone races it.
+// Ready, and its metadata read (spp_mean is in every budgeted output): the
+// server reads an output's noise after recording it, so "ready" alone races it.
 bool first_frame_ready(const nlohmann::json& job) {
   if (!job.contains("frames")) return false;
   const nlohmann::json& f = job.at("frames").at(0);
-  return f.at("state") == "ready" && f.contains("noise_reached");
+  return f.at("state") == "ready" && f.contains("spp_mean");
 }
 
 }  // namespace
