@@ -1,6 +1,10 @@
 // The job actions (cancel, pause, resume, retry-failed) and the job summary
 // with its lifecycle: state, counts by task state, times (docs/farm.md, "Job
 // lifecycle"). Part of JobStore (job_store.h).
+#include <algorithm>
+#include <initializer_list>
+#include <optional>
+
 #include "jobs/job_store.h"
 #include "jobs/job_store_impl.h"
 
@@ -15,17 +19,20 @@ std::optional<JobState> job_state(const sql::Db& db, int64_t job) {
   return parse_job_state(s.text(0));
 }
 
-// Moves job `job` from state `from` to `to` and runs `task_sql` (?1 = the
-// job) on its tasks, in one transaction; false for an unknown job. A job in
-// another state is left as it is.
-bool change_job_state(sql::Db& db, int64_t job, JobState from, JobState to, const char* task_sql) {
+// Moves job `job` from one of the states `from` to `to` (ending it at
+// `finished`, when given) and runs `task_sql` (?1 = the job) on its tasks, in
+// one transaction; false for an unknown job. A job in another state is left
+// as it is.
+bool change_job_state(sql::Db& db, int64_t job, std::initializer_list<JobState> from, JobState to,
+                      const char* task_sql, std::optional<double> finished = std::nullopt) {
   sql::Transaction tx(db);
   const auto state = job_state(db, job);
   if (!state) return false;
-  if (*state != from) return true;
-  sql::Stmt(db, "UPDATE jobs SET state = ?2 WHERE id = ?1")
+  if (std::find(from.begin(), from.end(), *state) == from.end()) return true;
+  sql::Stmt(db, "UPDATE jobs SET state = ?2, finished = COALESCE(?3, finished) WHERE id = ?1")
       .bind(1, job)
       .bind(2, std::string(to_string(to)))
+      .bind(3, finished)
       .run();
   sql::Stmt(db, task_sql).bind(1, job).run();
   tx.commit();
@@ -60,22 +67,10 @@ void count_task(JobSummary& j, TaskState state, int n) {
 // Canceled tasks keep their lease id: the worker's next heartbeat on it
 // answers Stop, and its late upload is refused.
 bool JobStore::cancel(int64_t job, double now) {
-  auto& db = impl_->db;
-  sql::Transaction tx(db);
-  const auto state = job_state(db, job);
-  if (!state) return false;
-  if (*state != JobState::Active && *state != JobState::Paused) return true;
-  sql::Stmt(db, "UPDATE jobs SET state = 'canceled', finished = ?2 WHERE id = ?1")
-      .bind(1, job)
-      .bind(2, now)
-      .run();
-  sql::Stmt(db,
-            "UPDATE tasks SET state = 'canceled', lease_expiry = NULL "
-            "WHERE job_id = ?1 AND state IN ('queued', 'leased', 'paused')")
-      .bind(1, job)
-      .run();
-  tx.commit();
-  return true;
+  return change_job_state(impl_->db, job, {JobState::Active, JobState::Paused}, JobState::Canceled,
+                          "UPDATE tasks SET state = 'canceled', lease_expiry = NULL "
+                          "WHERE job_id = ?1 AND state IN ('queued', 'leased', 'paused')",
+                          now);
 }
 
 // Leased tasks stay leased: their heartbeats keep them running and their
@@ -83,13 +78,13 @@ bool JobStore::cancel(int64_t job, double now) {
 // paused job ends too (settle_job).
 bool JobStore::pause(int64_t job) {
   return change_job_state(
-      impl_->db, job, JobState::Active, JobState::Paused,
+      impl_->db, job, {JobState::Active}, JobState::Paused,
       "UPDATE tasks SET state = 'paused' WHERE job_id = ?1 AND state = 'queued'");
 }
 
 bool JobStore::resume(int64_t job) {
   return change_job_state(
-      impl_->db, job, JobState::Paused, JobState::Active,
+      impl_->db, job, {JobState::Paused}, JobState::Active,
       "UPDATE tasks SET state = 'queued' WHERE job_id = ?1 AND state = 'paused'");
 }
 

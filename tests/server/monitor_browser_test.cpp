@@ -10,14 +10,13 @@
 
 #include <chrono>
 #include <ctime>
-#include <fstream>
 #include <iostream>
 #include <regex>
-#include <sstream>
 #include <thread>
 
 #include "renderer/output/exr_io.h"
 #include "tests/common/chromium.h"
+#include "tests/common/cli_runner.h"
 #include "tests/server/server_fixture.h"
 
 namespace fs = std::filesystem;
@@ -25,13 +24,6 @@ using nlohmann::json;
 
 namespace vesper {
 namespace {
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // A 320x180 EXR: a horizontal ramp, so the thumbnail and histogram show something.
 std::string ramp_exr(const fs::path& dir) {
@@ -49,7 +41,7 @@ std::string ramp_exr(const fs::path& dir) {
       img.at(x, y, 3) = 1.f;
     }
   write_exr(img, dir / "ramp.exr");
-  return read_text(dir / "ramp.exr");
+  return test::slurp(dir / "ramp.exr");
 }
 
 class MonitorBrowser : public ServerTest {
@@ -119,9 +111,9 @@ TEST_F(MonitorBrowser, ChromiumWatchesAJobFinishWithoutConsoleErrors) {
                             "--screenshot=" + (artifacts / "monitor-jobs.png").string()});
   const auto code = live.process->wait_for(180);
   fake.join();
-  ASSERT_EQ(code, 0) << read_text(live.log);
-  EXPECT_EQ(test::console_lines(read_text(live.log)), std::vector<std::string>{});
-  const std::string dom = read_text(live.dom);
+  ASSERT_EQ(code, 0) << test::slurp(live.log);
+  EXPECT_EQ(test::console_lines(test::slurp(live.log)), std::vector<std::string>{});
+  const std::string dom = test::slurp(live.dom);
   EXPECT_NE(dom.find("data-job=\"" + std::to_string(job) + "\""), std::string::npos) << dom;
   EXPECT_NE(dom.find("<section id=\"login\" hidden"), std::string::npos) << "read-only: no login";
   std::smatch observed;
@@ -141,9 +133,9 @@ TEST_F(MonitorBrowser, ChromiumWatchesAJobFinishWithoutConsoleErrors) {
       test::start_chromium(chromium, server_->url() + "/#/jobs/" + id + "/frames/2", dir_, "job",
                            {"--window-size=1400,1000", "--screenshot=" + screenshot.string(),
                             "--virtual-time-budget=5000"});
-  ASSERT_EQ(page.process->wait_for(120), 0) << read_text(page.log);
-  EXPECT_EQ(test::console_lines(read_text(page.log)), std::vector<std::string>{});
-  const std::string job_dom = read_text(page.dom);
+  ASSERT_EQ(page.process->wait_for(120), 0) << test::slurp(page.log);
+  EXPECT_EQ(test::console_lines(test::slurp(page.log)), std::vector<std::string>{});
+  const std::string job_dom = test::slurp(page.dom);
   EXPECT_NE(job_dom.find("data-view=\"job\""), std::string::npos);
   EXPECT_NE(job_dom.find("4/4 · 100 %"), std::string::npos) << "finished";
   EXPECT_NE(job_dom.find("/frames/1/thumbnail"), std::string::npos);
@@ -163,8 +155,8 @@ TEST_F(MonitorBrowser, WithoutASessionThePageShowsTheLoginForm) {
   start();
   test::BrowserRun run = test::start_chromium(chromium, server_->url() + "/", dir_, "login",
                                               {"--virtual-time-budget=5000"});
-  ASSERT_EQ(run.process->wait_for(120), 0) << read_text(run.log);
-  const std::string dom = read_text(run.dom);
+  ASSERT_EQ(run.process->wait_for(120), 0) << test::slurp(run.log);
+  const std::string dom = test::slurp(run.dom);
   EXPECT_NE(dom.find("data-view=\"login\""), std::string::npos) << dom.substr(0, 2000);
   EXPECT_NE(dom.find("<section id=\"login\">"), std::string::npos) << "shown, not hidden";
   EXPECT_NE(dom.find("<main id=\"app\" hidden"), std::string::npos);

@@ -11,11 +11,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "renderer/output/exr_io.h"
 #include "server/frame_views.h"
 #include "server/tokens.h"
+#include "tests/common/cli_runner.h"
 #include "tests/server/server_fixture.h"
 
 namespace fs = std::filesystem;
@@ -175,10 +175,7 @@ std::string two_tone_exr(const fs::path& dir) {
     for (int x = 0; x < img.width; ++x)
       for (size_t ch = 0; ch < 4; ++ch) img.at(x, y, ch) = ch == 3 ? 1.f : x < 150 ? 0.f : 4.f;
   write_exr(img, dir / "frame.exr");
-  std::ifstream in(dir / "frame.exr", std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+  return test::slurp(dir / "frame.exr");
 }
 
 TEST_F(MonitorTest, AFinishedFrameHasAThumbnailAndAHistogram) {
