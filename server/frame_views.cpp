@@ -1,6 +1,5 @@
 #include "server/frame_views.h"
 
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "compositor/comp_run.h"
 #include "compositor/histogram.h"
 #include "compositor/layer_mix.h"
 #include "renderer/output/exr_io.h"
@@ -22,20 +22,6 @@ fs::path temp_for(const fs::path& file) {
   static std::atomic<unsigned> counter{0};
   return file.parent_path() / ("." + file.filename().string() + ".tmp-" +
                                std::to_string(::getpid()) + "-" + std::to_string(counter++));
-}
-
-void write_png(const RgbaImage& display, const fs::path& path) {
-  std::vector<uint8_t> bytes(display.pixel_count() * 3);
-  for (size_t i = 0; i < display.pixel_count(); ++i)
-    for (size_t c = 0; c < 3; ++c)
-      bytes[i * 3 + c] =
-          uint8_t(std::lround(std::clamp(display.pixels[i * 4 + c], 0.f, 1.f) * 255));
-  auto out = OIIO::ImageOutput::create("png");
-  if (!out) throw CompError(path.string() + ": no PNG writer: " + OIIO::geterror());
-  const OIIO::ImageSpec spec(display.width, display.height, 3, OIIO::TypeDesc::UINT8);
-  const bool ok = out->open(path.string(), spec) &&
-                  out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) && out->close();
-  if (!ok) throw CompError(path.string() + ": cannot write the thumbnail: " + out->geterror());
 }
 
 void write_text(const std::string& text, const fs::path& path) {
@@ -129,7 +115,9 @@ int FrameViews::prune(const std::function<bool(const std::string&)>& stored) {
 fs::path FrameViews::thumbnail(const std::string& blob, const fs::path& exr) {
   return cached(dir_ / (blob + ".png"), [&](const fs::path& tmp) {
     // Averaged in linear light, then encoded: the thumbnail's greys are the frame's.
-    write_png(srgb_encoded(scaled_to_width(frame_composite(exr), kThumbnailMaxWidth)), tmp);
+    // A PNG as `vesper comp` writes one (8-bit, rounded, clamped).
+    write_display_image(srgb_encoded(scaled_to_width(frame_composite(exr), kThumbnailMaxWidth)),
+                        CompOutputs{}, tmp, dir_ / (blob + ".png"));
   });
 }
 
