@@ -9,6 +9,7 @@
 
 #include "cli/job_client.h"
 #include "cli/job_watch.h"
+#include "cli/progress.h"
 #include "common/control_characters.h"
 #include "protocol/job_messages.h"
 #include "protocol/paths.h"
@@ -26,14 +27,9 @@ std::string format_time(std::optional<double> t, const char* format = "%m-%d %H:
   return std::strftime(buf, sizeof buf, format, &tm) > 0 ? buf : "-";
 }
 
-// 12.3s, 4m05s, 2h03m; "-" when unset.
+// As the progress bar writes times (format_seconds); "-" when unset.
 std::string format_duration(std::optional<double> seconds) {
-  if (!seconds) return "-";
-  const double s = std::max(0.0, *seconds);
-  if (s < 60) return fmt::format("{:.1f}s", s);
-  const long long whole = static_cast<long long>(s);
-  if (whole < 3600) return fmt::format("{}m{:02}s", whole / 60, whole % 60);
-  return fmt::format("{}h{:02}m", whole / 3600, whole / 60 % 60);
+  return seconds ? format_seconds(std::max(0.0, *seconds)) : "-";
 }
 
 // A job's wall time: start to finish, or to `now` while it has not ended.

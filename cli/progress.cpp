@@ -18,7 +18,6 @@ Progress::Progress(std::string label)
       quiet_(g_silenced),
       start_(std::chrono::steady_clock::now()) {}
 
-namespace {
 std::string format_seconds(double s) {
   char buf[32];
   if (s >= 3600)
@@ -29,7 +28,6 @@ std::string format_seconds(double s) {
     std::snprintf(buf, sizeof buf, "%.1fs", s);
   return buf;
 }
-}  // namespace
 
 void Progress::update(size_t done, size_t total) {
   std::lock_guard lock(mutex_);

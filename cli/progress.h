@@ -13,6 +13,9 @@ namespace vesper::cli {
 // `vesper up` raises to hide its workers' chatter while its bar draws).
 void silence_progress();
 
+// 12.3s, 4m05s, 2h03m: elapsed times and ETAs as people read them.
+std::string format_seconds(double seconds);
+
 class Progress {
  public:
   explicit Progress(std::string label);

@@ -274,8 +274,8 @@ std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l, Le
     return std::nullopt;
   }
   std::string problem = got.problem;
-  if (problem.empty()) keep_cache_under_cap(l);
   if (problem.empty()) {
+    keep_cache_under_cap(l);
     try {
       std::vector<Asset> assets;  // the job store's spelling of the lease's assets
       for (const protocol::AssetRef& a : l.assets) assets.push_back({a.name, a.blob});
