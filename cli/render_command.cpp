@@ -89,7 +89,9 @@ int run_render(const RenderCommandOptions& o) {
   std::filesystem::path out_path;
   try {  // every usage error before any work: flags, scene, output path
     if (o.aovs) ro.aovs = parse_aovs(*o.aovs);
-    desc = load_scene(o.scene, SceneLoadOptions{o.scene_dir_only});
+    SceneLoadOptions load{.scene_dir_only = o.scene_dir_only};
+    if (o.frame) load.frame = double(*o.frame);
+    desc = load_scene(o.scene, load);
     if (o.scale) scale_film(desc.film, *o.scale);
     output = std::make_unique<FrameOutput>(o.output, o.partial);
     out_path = output->path(o.frame ? std::optional<long>(*o.frame) : std::nullopt);

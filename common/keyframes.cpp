@@ -95,6 +95,14 @@ std::vector<double> value_at(const Track& track, double time) {
   return out;
 }
 
+// A whole number as an integer, as a scene writes it: a key that holds a
+// file's own value (30, not 30.0) gives the same document, and so the same
+// scene hash, as the value written without keys.
+nlohmann::json as_json_number(double v) {
+  if (v == std::trunc(v) && std::abs(v) < 0x1p53) return int64_t(v);
+  return v;
+}
+
 void evaluate_in_place(nlohmann::json& node, double time, const std::string& file,
                        const std::string& path) {
   if (is_keyframed(node)) {
@@ -131,8 +139,10 @@ nlohmann::json keyframed_value(const nlohmann::json& node, double time, const st
               "expected keys whose interpolation stays within the double range; it overflows "
               "at frame " +
               std::to_string(time));
-  if (track.scalar) return v[0];
-  return nlohmann::json(v);
+  if (track.scalar) return as_json_number(v[0]);
+  nlohmann::json out = nlohmann::json::array();
+  for (double c : v) out.push_back(as_json_number(c));
+  return out;
 }
 
 nlohmann::json evaluate_keyframes(const nlohmann::json& doc, double time, const std::string& file) {

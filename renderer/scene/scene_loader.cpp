@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/json_parse.h"
+#include "common/keyframes.h"
 #include "common/scene_hash.h"
 #include "common/scene_reference.h"
 #include "renderer/scene/aov_list.h"
@@ -194,8 +195,20 @@ std::string content_hash(const nlohmann::json& doc, const SceneParseContext& ctx
   return hash.hex();
 }
 
+SceneDescription parse_frame_document(const nlohmann::json& doc, const std::filesystem::path& file,
+                                      const SceneLoadOptions& options);
+
+// A scene over time is parsed as the document of one frame: every keyframed
+// value evaluated at options.frame. A scene without keys is its own frame
+// document, so its hash is what it always was.
 SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem::path& file,
                                 const SceneLoadOptions& options) {
+  if (!has_keyframes(doc)) return parse_frame_document(doc, file, options);
+  return parse_frame_document(evaluate_keyframes(doc, options.frame, file.string()), file, options);
+}
+
+SceneDescription parse_frame_document(const nlohmann::json& doc, const std::filesystem::path& file,
+                                      const SceneLoadOptions& options) {
   SceneParseContext ctx;
   ctx.file = file.string();
   ctx.base_dir = file.parent_path();

@@ -25,6 +25,9 @@ struct SceneLoadOptions {
   // worker's own files (`vesper render --scene-dir-only`). Off for a local
   // render of one's own scene, where absolute paths are fine.
   bool scene_dir_only = false;
+  // The time keyframed values are evaluated at (common/keyframes.h), in
+  // frames: `vesper render --frame N`; 1 (the first frame) without one.
+  double frame = 1;
 };
 
 // Loads the scene, all meshes and environment images it references. Throws

@@ -39,7 +39,7 @@ TEST(Keyframes, LinearMatchesHandValuesAndHoldsTheEnds) {
 
 TEST(Keyframes, VectorsInterpolatePerComponent) {
   const json k = json::parse(R"({"keys": [[0, [0, 2, -4]], [2, [4, 2, 0]]], "interp": "linear"})");
-  EXPECT_EQ(keyframed_value(k, 0.5, "s.json", "/v"), json::parse("[1.0, 2.0, -3.0]"));
+  EXPECT_EQ(keyframed_value(k, 0.5, "s.json", "/v"), json::parse("[1, 2, -3]"));
 }
 
 TEST(Keyframes, OneKeyIsAConstant) {
@@ -89,8 +89,8 @@ TEST(Keyframes, EvaluationReplacesEveryKeyframeObjectAndLeavesTheRest) {
   EXPECT_TRUE(has_keyframes(doc));
   const json at2 = evaluate_keyframes(doc, 2, "scene.json");
   EXPECT_FALSE(has_keyframes(at2));
-  EXPECT_EQ(at2["camera"]["from"], json::parse("[1.0, 0.0, 0.0]"));
-  EXPECT_EQ(at2["lights"][0]["intensity"], 3.0);
+  EXPECT_EQ(at2["camera"]["from"], json::parse("[1, 0, 0]"));
+  EXPECT_EQ(at2["lights"][0]["intensity"], 3);
   EXPECT_EQ(at2["camera"]["fov"], 40);
   EXPECT_EQ(at2["format"], "vesper-scene/1");
 
