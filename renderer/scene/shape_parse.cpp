@@ -82,10 +82,9 @@ MeshShapeDesc parse_mesh(JsonReader& node, SceneParseContext& ctx) {
 ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx) {
   node.expect_object();
   ShapeDesc shape;
-  if (const auto name = node.optional_child("name")) shape.name = name->as_string();
   switch (node.enumeration("type", kShapeTypes)) {
     case 0: {
-      node.allow_keys({"type", "name", "corner", "edge1", "edge2", "material"});
+      node.allow_keys({"type", "corner", "edge1", "edge2", "material", "name"});
       shape.material = ctx.material(node, "material");
       // Zero-area quads are accepted: they are simply invisible.
       shape.geometry = QuadShapeDesc{read_vec3(node, "corner"), read_vec3(node, "edge1"),
@@ -93,19 +92,20 @@ ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx) {
       break;
     }
     case 1: {
-      node.allow_keys({"type", "name", "center", "radius", "material"});
+      node.allow_keys({"type", "center", "radius", "material", "name"});
       shape.material = ctx.material(node, "material");
       shape.geometry =
           SphereShapeDesc{read_vec3(node, "center"), node.number("radius", Range::positive())};
       break;
     }
     default: {
-      node.allow_keys({"type", "name", "file", "positions", "indices", "transform", "material"});
+      node.allow_keys({"type", "file", "positions", "indices", "transform", "material", "name"});
       shape.material = ctx.material(node, "material");  // before a possibly slow mesh load
       shape.geometry = parse_mesh(node, ctx);
       break;
     }
   }
+  if (const auto name = node.optional_child("name")) shape.name = name->as_string();
   return shape;
 }
 
