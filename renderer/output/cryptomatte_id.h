@@ -31,9 +31,11 @@ inline float crypto_id(std::string_view name) { return std::bit_cast<float>(cryp
 inline std::string crypto_hex(uint32_t bits) { return fmt::format("{:08x}", bits); }
 
 // The metadata key of a Cryptomatte type ("CryptoObject"): the first 7 hex
-// digits of its name's hash, so that it is the same in every frame and shot.
+// digits of its name's id, as the reference implementation derives it
+// (layer_hash in Psyop's cryptomatte_utilities.py), so that it is the same
+// in every frame and shot.
 inline std::string crypto_metadata_key(std::string_view type_name) {
-  return crypto_hex(murmur_hash3_x86_32(type_name)).substr(0, 7);
+  return crypto_hex(crypto_id_bits(type_name)).substr(0, 7);
 }
 
 }  // namespace vesper

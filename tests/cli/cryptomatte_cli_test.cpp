@@ -4,6 +4,8 @@
 // from the file without them, and only the graded beauty in its EXR.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "renderer/output/exr_io.h"
 #include "tests/common/cli_runner.h"
 
@@ -52,6 +54,25 @@ TEST_F(CryptomatteCli, PartialRenderRefusesIt) {
   EXPECT_NE(r.err.find("cryptomatte"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("partial"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "a.vpartial"));
+}
+
+// The scene asks for it and the job would split frames: refused before
+// anything is uploaded (the server, which does not read scenes, could not).
+TEST_F(CryptomatteCli, SubmitRefusesSplittingACryptomatteScene) {
+  std::ofstream(dir_ / "scene.json") << R"({"format": "vesper-scene/1",
+    "camera": {"type": "perspective", "from": [0, 0, 4], "to": [0, 0, 0], "up": [0, 1, 0], "fov": 30},
+    "film": {"width": 8, "height": 8}, "render": {"spp": 32, "aovs": ["cryptomatte"]},
+    "materials": {"m": {"type": "diffuse"}}, "shapes": []})";
+  const std::string submit =
+      "submit " + q(dir_ / "scene.json") + " --server http://127.0.0.1:9 --token t --dry-run ";
+  const RunResult split = run(submit + "--split 8");
+  EXPECT_EQ(split.exit_code, 2);
+  EXPECT_NE(split.err.find("--split"), std::string::npos) << split.err;
+  EXPECT_NE(split.err.find("cryptomatte"), std::string::npos) << split.err;
+  // Whole frames pass the check (and then fail to reach the absent server).
+  const RunResult whole = run(submit + "--split 32");
+  EXPECT_EQ(whole.err.find("cryptomatte"), std::string::npos) << whole.err;
+  EXPECT_NE(whole.err.find("cannot reach"), std::string::npos) << whole.err;
 }
 
 }  // namespace
