@@ -50,6 +50,17 @@ void add_strip(SceneDescription& d, const std::string& name, double x0, double x
   d.shapes.back().name = name;
 }
 
+// The same strip as two triangles of a mesh.
+void add_mesh_strip(SceneDescription& d, const std::string& name, double x0, double x1,
+                    uint32_t material) {
+  const double a = world_x(d, x0), b = world_x(d, x1);
+  MeshShapeDesc mesh;
+  mesh.positions = {{a, -10, 0}, {b, -10, 0}, {b, 10, 0}, {a, 10, 0}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.source = "inline";
+  d.shapes.push_back({std::move(mesh), material, name});
+}
+
 // The matte of one name: the sum over ranks of the coverage paired with its id.
 float matte(const LayeredImage& img, const std::string& type, const std::string& name, int x,
             int y) {
@@ -76,8 +87,8 @@ float coverage_sum(const LayeredImage& img, const std::string& type, int x, int 
   return sum;
 }
 
-// Columns: "left" (red) [0, 3.5), "right_a" (blue) [3.5, 5), "right_b" (blue)
-// [5, 6.5), background from 6.5. Column 3 is split half/half between two
+// Columns: "left" (red) [0, 3.5), "right_a" (blue) [3.5, 5), "right_b" (blue,
+// a mesh) [5, 6.5), background from 6.5. Column 3 is split half/half between two
 // objects, column 6 between an object and the background.
 SceneDescription split_scene(int spp) {
   SceneDescription d = plane_scene(8, 4, spp);
@@ -85,7 +96,7 @@ SceneDescription split_scene(int spp) {
   const uint32_t blue = add_material(d, "blue", DiffuseMaterialDesc{Rgb(0.1f, 0.1f, 0.7f)});
   add_strip(d, "left", -20, 3.5, red);
   add_strip(d, "right_a", 3.5, 5, blue);
-  add_strip(d, "right_b", 5, 6.5, blue);
+  add_mesh_strip(d, "right_b", 5, 6.5, blue);
   return d;
 }
 
