@@ -1,6 +1,7 @@
 // Cost of the layer machinery, measured side by side in one run on the
 // night-room scene: no layers, path-selection layers + transport AOVs (same
-// pass), and everything including the dense-fog variant (a second pass).
+// pass), everything including the dense-fog variant (a second pass), and
+// Cryptomatte alone (per-pixel first-hit counts, no layers).
 //
 //   ./build/bench/vesper_layers_bench [--quick]
 #include <cstdio>
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
                            Aov::VolumeIndirect};
   SceneDescription all = same_pass;
   all.layers = full.layers;
+  SceneDescription crypto = none;
+  crypto.render.aovs = {Aov::Cryptomatte};
 
   struct Case {
     const char* name;
@@ -44,7 +47,8 @@ int main(int argc, char** argv) {
   };
   std::vector<Case> cases = {{"no layers, no AOVs", &none},
                              {"4 layers + 7 transport AOVs (1 pass)", &same_pass},
-                             {"... + rays_dense variant (2 passes)", &all}};
+                             {"... + rays_dense variant (2 passes)", &all},
+                             {"cryptomatte, no layers", &crypto}};
   RenderOptions o;
   o.spp = spp;
   for (auto& c : cases) render_frame(*c.desc, o);  // warm-up

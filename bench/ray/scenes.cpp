@@ -177,14 +177,14 @@ SceneDescription dense_mesh_scene(int segments, int rings) {
   const uint32_t red = material("red", Rgb(0.63f, 0.065f, 0.05f));
   const uint32_t green = material("green", Rgb(0.14f, 0.45f, 0.091f));
   auto quad = [&](Vec3d c, Vec3d e1, Vec3d e2, uint32_t m) {
-    d.shapes.push_back({QuadShapeDesc{c, e1, e2}, m});
+    d.shapes.push_back({QuadShapeDesc{c, e1, e2}, m, {}});
   };
   quad({-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white);  // floor
   quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white);  // ceiling
   quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white);  // back
   quad({-1, 0, 1}, {0, 0, -2}, {0, 2, 0}, red);    // left
   quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green);   // right
-  d.shapes.push_back({displaced_sphere({0, 0.62, 0}, 0.55, segments, rings), white});
+  d.shapes.push_back({displaced_sphere({0, 0.62, 0}, 0.55, segments, rings), white, {}});
   d.lights.push_back(
       {QuadLightDesc{{-0.24, 1.98, -0.22}, {0.48, 0, 0}, {0, 0, 0.38}, Rgb(17.f, 12.f, 4.f)}, ""});
   return d;

@@ -86,6 +86,7 @@ std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
       hit.n = normalize(cross(q.edge1, q.edge2));
       hit.material = q.material;
       hit.light = q.light;
+      hit.shape = q.shape;
       break;
     }
     case GeomKind::Sphere: {
@@ -94,6 +95,7 @@ std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
       hit.n = normalize(d);
       hit.p = s.center + hit.n * s.radius;  // re-project onto the surface (pbrt)
       hit.material = s.material;
+      hit.shape = s.shape;
       break;
     }
     case GeomKind::Mesh: {
@@ -103,6 +105,7 @@ std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
       hit.p = p0 + (p1 - p0) * u + (p2 - p0) * v;
       hit.n = normalize(cross(p1 - p0, p2 - p0));
       hit.material = m.material;
+      hit.shape = m.shape;
       break;
     }
   }

@@ -17,6 +17,7 @@ struct SurfaceHit {
   float t = 0;
   uint32_t material = 0;
   int32_t light = -1;  // index into Scene::lights when the surface is an emitter
+  int32_t shape = -1;  // index into the scene's shapes (Cryptomatte); -1 for emitters
 };
 
 class Accel {

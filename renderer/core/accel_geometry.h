@@ -13,16 +13,19 @@ struct AccelQuad {
   Vec3 corner, edge1, edge2;
   uint32_t material = 0;
   int32_t light = -1;  // index into Scene::lights when the quad is an emitter
+  int32_t shape = -1;  // index into the scene's shapes; -1 for emitters
 };
 struct AccelSphere {
   Vec3 center;
   float radius = 1;
   uint32_t material = 0;
+  int32_t shape = -1;  // index into the scene's shapes
 };
 struct AccelMesh {
   std::vector<Vec3> positions;
   std::vector<std::array<uint32_t, 3>> triangles;
   uint32_t material = 0;
+  int32_t shape = -1;  // index into the scene's shapes
 };
 
 struct AccelGeometry {

@@ -37,6 +37,7 @@ void add_light_reached(PathContext& ctx, size_t li, float distance, int depth,
 // AOVs and alpha of the camera ray's first hit.
 void record_first_hit(PathContext& ctx, const SurfaceHit& hit, const Ray& ray) {
   ctx.result.alpha = 1.f;
+  ctx.result.first_shape = hit.shape;
   if (!ctx.options.want_aovs) return;
   ctx.result.depth = float(hit.t * ctx.scene.unit_scale);
   ctx.result.normal = dot(hit.n, ray.dir) < 0.f ? hit.n : -hit.n;

@@ -18,6 +18,7 @@ struct PathResult {
   float depth = 0;    // first-hit distance along the camera ray, scene units; 0 for a miss
   uint32_t rays = 0;  // intersection and occlusion queries traced
   float camera_transmittance = 1;  // through the media to the first surface (RGB average)
+  int32_t first_shape = -1;        // the shape the camera ray hits first (media ignored); -1: none
 };
 
 struct PathTracerOptions {

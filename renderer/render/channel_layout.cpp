@@ -42,6 +42,7 @@ std::vector<FirstEvent> transport_events(Aov a) {
     case Aov::Depth:
     case Aov::Variance:
     case Aov::Spp:
+    case Aov::Cryptomatte:
       break;
   }
   return {};
@@ -61,6 +62,8 @@ void add_aov(ChannelLayout& l, Aov a, const std::vector<int>& all_groups) {
     l.names.insert(l.names.end(), kVarianceChannels.begin(), kVarianceChannels.end());
   } else if (a == Aov::Spp) {
     l.names.push_back(kSppChannel);
+  } else if (a == Aov::Cryptomatte) {
+    l.cryptomatte = true;  // its channels come after the summed ones (render/cryptomatte.h)
   } else if (a == Aov::Depth) {
     l.depth = int(l.names.size());
     l.names.push_back("depth.Z");

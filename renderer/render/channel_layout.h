@@ -20,6 +20,7 @@ struct ChannelLayout {
   int albedo = -1, normal = -1, depth = -1;
   std::vector<BinOutput> bin_outputs;
   bool need_transmittance = false;
+  bool cryptomatte = false;  // count first hits per shape (render/cryptomatte.h)
   // Channels whose per-stream sums are kept for their variance (FilmSums::streamed).
   std::vector<int> streamed;
   std::vector<std::string> names{"R", "G", "B", "A"};

@@ -55,6 +55,7 @@ SampleCounts sample_pixel(const PixelSamplerContext& c, int x, int y, int64_t fi
         c.scene.camera.generate_ray(float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y, u_lens);
     const PathResult r = trace_path(c.scene, ray, sampler, pt);
     counts.rays += r.rays;
+    if (c.crypto) c.crypto->add(pixel_index, r.first_shape);
     if (!sample_values(r, record, c.layout, v)) ++counts.nonfinite;
     for (size_t k = 0; k < v.size(); ++k) px.sums[k] += v[k];
     const size_t stream = size_t(sample_stream(s));

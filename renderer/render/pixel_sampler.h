@@ -6,6 +6,7 @@
 #include "renderer/integrator/path_tracer.h"
 #include "renderer/output/film_sums.h"
 #include "renderer/render/channel_layout.h"
+#include "renderer/render/cryptomatte.h"
 
 namespace vesper {
 
@@ -16,6 +17,7 @@ struct PixelSamplerContext {
   uint64_t seed = 0;
   int range_begin = 0;  // sample index of the range's first sample
   int width = 0;
+  CryptoCounts* crypto = nullptr;  // counts each sample's first hit when set
 };
 
 struct SampleCounts {

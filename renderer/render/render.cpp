@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "renderer/output/range_metadata.h"
 #include "renderer/render/channel_layout.h"
@@ -246,7 +247,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   const size_t pixels = size_t(img.width) * size_t(img.height);
   check_pixel_samples(options, plan, pixels);
 
-  const PixelSamplerContext pixel{scene, layout, plan.seed, plan.begin, img.width};
+  std::optional<CryptoCounts> crypto;
+  if (layout.cryptomatte) crypto.emplace(pixels);
+  const PixelSamplerContext pixel{scene,      layout,    plan.seed,
+                                  plan.begin, img.width, crypto ? &*crypto : nullptr};
   Pass pass{pixel, pt, img.height, (img.width + kTileSize - 1) / kTileSize,
             (img.height + kTileSize - 1) / kTileSize};
   pass.targets = options.pixel_samples;
@@ -273,6 +277,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     img.pixels = resolve_image(out.film).pixels;
   }
   if (options.on_progress) options.on_progress(size_t(most), size_t(most));
+  if (crypto) append_cryptomatte(img, scene, *crypto, options.cryptomatte_depth);
 
   out.stats.seconds = seconds_since(t0);
   out.stats.camera_samples = counts.camera_samples;

@@ -54,6 +54,8 @@ struct RenderOptions {
   // rendering. For the regression batch's per-layer noise model.
   bool layer_variance = false;
   bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
+  // Ranks per Cryptomatte type (Aov::Cryptomatte): (depth + 1) / 2 RGBA layers each.
+  int cryptomatte_depth = 6;
   std::vector<LayerSelection> layers;  // path-selection layers, same pass as the beauty
   // Called from worker threads after each tile (must be thread-safe).
   std::function<void(size_t tiles_done, size_t tiles_total)> on_progress;

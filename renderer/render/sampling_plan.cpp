@@ -38,6 +38,11 @@ SamplingPlan plan_sampling(const RenderDesc& r, const RenderOptions& options) {
   if (min_spp && max_spp && *min_spp > *max_spp)
     bad("render.min_spp (--min-spp) " + std::to_string(*min_spp) +
         " is greater than render.max_spp (--max-spp) " + std::to_string(*max_spp));
+  const std::vector<Aov>& aovs = options.aovs ? *options.aovs : r.aovs;
+  if (options.keep_sums && std::find(aovs.begin(), aovs.end(), Aov::Cryptomatte) != aovs.end())
+    bad("cryptomatte (render.aovs, --aov) cannot go into a partial render (--partial, or a farm "
+        "job split into sample ranges): partials do not carry its per-shape sample counts; "
+        "render the frame in one range");
   plan.begin = options.sample_begin;
   plan.end = options.sample_end.value_or(frame_spp(r, options));
   plan.cap = std::max(0, plan.end - plan.begin);

@@ -12,8 +12,9 @@ namespace vesper {
 inline constexpr std::string_view kAovNames[] = {
     "albedo",         "normal",           "depth",           "emission",
     "diffuse_direct", "diffuse_indirect", "specular_direct", "specular_indirect",
-    "volume_direct",  "volume_indirect",  "variance",        "spp"};
-static_assert(std::size(kAovNames) == size_t(Aov::Spp) + 1);
+    "volume_direct",  "volume_indirect",  "variance",        "spp",
+    "cryptomatte"};
+static_assert(std::size(kAovNames) == size_t(Aov::Cryptomatte) + 1);
 
 inline std::optional<Aov> aov_from_name(std::string_view name) {
   for (size_t i = 0; i < std::size(kAovNames); ++i)

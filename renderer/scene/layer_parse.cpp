@@ -150,6 +150,11 @@ LayerDesc parse_layer(JsonReader node, const std::string& name, const LightGroup
     node.fail("expected a layer name other than the names of the beauty and the standard AOVs (" +
               reserved + "), got \"" + name + "\"");
   }
+  if (name.rfind("CryptoObject", 0) == 0 || name.rfind("CryptoMaterial", 0) == 0)
+    node.fail(
+        "expected a layer name that does not start with CryptoObject or CryptoMaterial "
+        "(the channels of the cryptomatte AOV), got \"" +
+        name + "\"");
   node.expect_object();
   node.allow_keys({"paths", "lights", "variant"});
   LayerDesc layer;

@@ -24,6 +24,9 @@ struct Scene {
   FilmDesc film;
   RenderDesc render;
   std::vector<Bsdf> materials;
+  // Cryptomatte's names: every shape's (shape_name) and material, and each shape's material.
+  std::vector<std::string> shape_names, material_names;
+  std::vector<uint32_t> shape_materials;
   std::vector<Light> lights;
   std::vector<std::string> light_groups;  // parallel to lights; "" = no group
   // Light groups for layers: every distinct `group`, then "default" (lights

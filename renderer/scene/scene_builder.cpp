@@ -59,22 +59,25 @@ struct SceneSurfaces {
 };
 
 void add_shapes(const SceneDescription& desc, const RenderSpace& space, SceneSurfaces& geometry) {
-  for (const auto& s : desc.shapes) {
+  for (size_t i = 0; i < desc.shapes.size(); ++i) {
+    const ShapeDesc& s = desc.shapes[i];
+    const int32_t shape = int32_t(i);
     std::visit(
         [&](const auto& g) {
           using T = std::decay_t<decltype(g)>;
           if constexpr (std::is_same_v<T, QuadShapeDesc>) {
             geometry.quads.push_back({space.point(g.corner), space.vector(g.edge1),
-                                      space.vector(g.edge2), s.material, -1});
+                                      space.vector(g.edge2), s.material, -1, shape});
           } else if constexpr (std::is_same_v<T, SphereShapeDesc>) {
             geometry.spheres.push_back(
-                {space.point(g.center), float(g.radius * space.inv_scale), s.material});
+                {space.point(g.center), float(g.radius * space.inv_scale), s.material, shape});
           } else {
             AccelMesh m;
             m.positions.reserve(g.positions.size());
             for (const auto& p : g.positions) m.positions.push_back(space.point(p));
             m.triangles = g.triangles;
             m.material = s.material;
+            m.shape = shape;
             geometry.meshes.push_back(std::move(m));
           }
         },
@@ -133,6 +136,11 @@ Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options
   scene.radius = space.radius;
   scene.camera = make_camera(desc.camera, desc.film, space);
   for (const auto& m : desc.materials) scene.materials.push_back(make_bsdf(m));
+  scene.material_names = desc.material_names;
+  for (size_t i = 0; i < desc.shapes.size(); ++i) {
+    scene.shape_names.push_back(shape_name(desc, i));
+    scene.shape_materials.push_back(desc.shapes[i].material);
+  }
 
   SceneSurfaces geometry;
   add_shapes(desc, space, geometry);

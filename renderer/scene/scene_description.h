@@ -51,8 +51,9 @@ enum class Aov {
   SpecularIndirect,
   VolumeDirect,
   VolumeIndirect,
-  Variance,  // variance.R/G/B: the variance of the beauty's pixel mean
-  Spp        // spp: samples taken in the pixel
+  Variance,    // variance.R/G/B: the variance of the beauty's pixel mean
+  Spp,         // spp: samples taken in the pixel
+  Cryptomatte  // CryptoObject00.., CryptoMaterial..: id mattes (render/cryptomatte.h)
 };
 
 struct RenderDesc {
@@ -107,6 +108,7 @@ struct MeshShapeDesc {
 struct ShapeDesc {
   std::variant<QuadShapeDesc, SphereShapeDesc, MeshShapeDesc> geometry;
   uint32_t material = 0;  // index into SceneDescription::materials
+  std::string name;       // unique in the scene; "" = the default (shape_name)
 };
 
 struct QuadLightDesc {
@@ -219,5 +221,14 @@ struct SceneDescription {
   // FNV-1a 64 (16 hex digits) of the canonical JSON text + bytes of referenced files.
   std::string content_hash;
 };
+
+// A shape's name (Cryptomatte's object name): its "name", or its type and
+// index in "shapes" ("quad3", "sphere0", "mesh7").
+inline std::string shape_name(const SceneDescription& d, size_t index) {
+  const ShapeDesc& s = d.shapes[index];
+  if (!s.name.empty()) return s.name;
+  static constexpr const char* kTypes[] = {"quad", "sphere", "mesh"};
+  return kTypes[s.geometry.index()] + std::to_string(index);
+}
 
 }  // namespace vesper

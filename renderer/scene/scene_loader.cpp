@@ -234,6 +234,7 @@ SceneDescription parse_frame_document(const nlohmann::json& doc, const std::file
     scene.shapes.push_back(parse_shape(shapes.element(i), ctx));
     check_extent(shapes.element(i), extent_of(scene.shapes.back()));
   }
+  name_shapes(shapes, scene);
   if (const auto lights = root.optional_child("lights")) parse_lights(*lights, ctx, scene);
 
   // Media come in name order, like materials; the order does not matter since

@@ -42,6 +42,9 @@ Transform parse_transform(JsonReader node);
 bool transform_fits(const Transform& t, double limit);
 
 ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx);
+// Gives every shape its name (the default where it has none: shape_name) and
+// refuses a name two shapes share, at the second one's JSON path.
+void name_shapes(const JsonReader& shapes, SceneDescription& scene);
 LightDesc parse_light(JsonReader node, SceneParseContext& ctx);
 // One entry of "media" (`name` is its key); loads and validates .vdb grids.
 MediumDesc parse_medium(JsonReader node, const std::string& name, SceneParseContext& ctx);

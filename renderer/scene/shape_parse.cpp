@@ -1,5 +1,6 @@
 // Parses one entry of "shapes": quad, sphere or mesh (from a file or inline).
 #include <limits>
+#include <map>
 
 #include "renderer/scene/mesh_loader.h"
 #include "renderer/scene/scene_parse.h"
@@ -83,7 +84,7 @@ ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx) {
   ShapeDesc shape;
   switch (node.enumeration("type", kShapeTypes)) {
     case 0: {
-      node.allow_keys({"type", "corner", "edge1", "edge2", "material"});
+      node.allow_keys({"type", "corner", "edge1", "edge2", "material", "name"});
       shape.material = ctx.material(node, "material");
       // Zero-area quads are accepted: they are simply invisible.
       shape.geometry = QuadShapeDesc{read_vec3(node, "corner"), read_vec3(node, "edge1"),
@@ -91,20 +92,40 @@ ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx) {
       break;
     }
     case 1: {
-      node.allow_keys({"type", "center", "radius", "material"});
+      node.allow_keys({"type", "center", "radius", "material", "name"});
       shape.material = ctx.material(node, "material");
       shape.geometry =
           SphereShapeDesc{read_vec3(node, "center"), node.number("radius", Range::positive())};
       break;
     }
     default: {
-      node.allow_keys({"type", "file", "positions", "indices", "transform", "material"});
+      node.allow_keys({"type", "file", "positions", "indices", "transform", "material", "name"});
       shape.material = ctx.material(node, "material");  // before a possibly slow mesh load
       shape.geometry = parse_mesh(node, ctx);
       break;
     }
   }
+  if (const auto name = node.optional_child("name")) shape.name = name->as_string();
   return shape;
+}
+
+void name_shapes(const JsonReader& shapes, SceneDescription& scene) {
+  std::map<std::string, size_t> seen;
+  for (size_t i = 0; i < scene.shapes.size(); ++i) {
+    const bool explicit_name = !scene.shapes[i].name.empty();
+    const std::string name = shape_name(scene, i);
+    const auto [at, fresh] = seen.emplace(name, i);
+    if (!fresh) {
+      const std::string first = json_pointer_append(shapes.path(), at->second);
+      const JsonReader shape = shapes.element(i);
+      if (explicit_name)
+        shape.fail_key("name", "expected a unique shape name, got \"" + name + "\", the name of " +
+                                   first + " already");
+      shape.fail("its default name \"" + name + "\" is the name of " + first +
+                 " already: give one of them another \"name\"");
+    }
+    scene.shapes[i].name = name;
+  }
 }
 
 }  // namespace vesper

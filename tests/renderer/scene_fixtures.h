@@ -23,10 +23,10 @@ inline uint32_t add_material(SceneDescription& d, const std::string& name, Mater
 }
 
 inline void add_sphere(SceneDescription& d, Vec3d c, double r, uint32_t material) {
-  d.shapes.push_back({SphereShapeDesc{c, r}, material});
+  d.shapes.push_back({SphereShapeDesc{c, r}, material, {}});
 }
 inline void add_quad(SceneDescription& d, Vec3d corner, Vec3d e1, Vec3d e2, uint32_t material) {
-  d.shapes.push_back({QuadShapeDesc{corner, e1, e2}, material});
+  d.shapes.push_back({QuadShapeDesc{corner, e1, e2}, material, {}});
 }
 
 template <typename L>

@@ -91,7 +91,7 @@ TEST(Stability, DegenerateGeometryAndExtremeRoughnessStayFinite) {
                     {0.6, 1.6, 0}, {-0.5, 0.5, 0.5}, {-0.2, 0.5, 0.5}, {-0.3, 0.8, 0.5}};
   mesh.triangles = {{0, 1, 2}, {2, 2, 2}, {2, 3, 4}, {5, 6, 7}};
   mesh.source = "inline";
-  d.shapes.push_back({mesh, 0});
+  d.shapes.push_back({mesh, 0, {}});
   // Zero-area light.
   add_light(d, QuadLightDesc{{0, 1.5, 0}, {0, 0, 0}, {0, 0, 0.2}, Rgb(100.f)});
   // Every material at roughness 0 and 1.

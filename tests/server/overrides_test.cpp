@@ -44,6 +44,18 @@ TEST_F(OverridesTest, BadKeysAreRefusedNamingTheirPath) {
   EXPECT_TRUE(get_ok("/jobs").at("jobs").empty());
 }
 
+// Cryptomatte is refused in partial renders: a job asking for it may not split frames.
+TEST_F(OverridesTest, CryptomatteJobsDoNotSplitFrames) {
+  start();
+  const auto split = refusal({{"aovs", {"cryptomatte"}}, {"spp", 64}, {"samples_per_task", 16}});
+  EXPECT_EQ(split.first, "/samples_per_task");
+  EXPECT_NE(split.second.find("cryptomatte"), std::string::npos) << split.second;
+  post_ok("/jobs", job_body({{"aovs", {"cryptomatte"}}, {"spp", 64}, {"samples_per_task", 64}}),
+          sub(), 201);
+  post_ok("/jobs", job_body({{"aovs", {"albedo"}}, {"spp", 64}, {"samples_per_task", 16}}), sub(),
+          201);
+}
+
 TEST_F(OverridesTest, EachLeaseCarriesTheJobsOverrides) {
   start();
   post_ok("/jobs",
