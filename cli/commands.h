@@ -30,6 +30,9 @@ struct RenderCommandOptions {
   // Frame number: decorrelates the frame's noise from other frames (the seed
   // becomes frame_seed(seed, frame)) and is stamped as vesper:frame.
   std::optional<int> frame;
+  // --frames 1-24x2: render these frames in turn, each as with --frame N
+  // (excludes --frame; -o needs a '#' run for more than one frame).
+  std::optional<std::string> frames;
   // Write a partial render (docs/partial-format.md): the exact per-pixel
   // sample sums of [sample_begin, sample_end), which `vesper merge` combines.
   bool partial = false;
@@ -77,6 +80,9 @@ struct VdbCloudOptions {
   std::optional<float> noise_amplitude;
   std::optional<int> noise_octaves;
   std::string grid = "density";
+  // --frames 1-24: an evolving cloud, frame f at CloudParams::time f - 1,
+  // written to -o with its '#' run filled.
+  std::optional<std::string> frames;
   bool quiet = false;
 };
 int run_vdb_cloud(const VdbCloudOptions& options);

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "common/frame_pattern.h"
 #include "compositor/comp_run.h"
 #include "compositor/grade.h"
 #include "compositor/layer_mix.h"

@@ -100,7 +100,7 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
   r->add_option("-o,--output", o->output,
                 "Output: .exr (every layer), .png/.jpg/.tif (the beauty through the default "
                 "display transform, as `vesper comp`), or .vpartial with --partial; #### in the "
-                "name = the --frame number, zero-padded")
+                "name = the frame number (--frame, --frames), zero-padded")
       ->required();
   r->add_option("--spp", o->spp, "Samples per pixel (overrides render.spp)")->check(at_least(1));
   r->add_option("--threads", o->threads, "Worker threads (default: all cores)")->check(at_least(1));
@@ -128,9 +128,12 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
       ->check(at_least(0));
   r->add_option("--sample-end", o->sample_end, "One past the last sample index (default: spp)")
       ->check(at_least(0));
-  r->add_option("--frame", o->frame,
-                "Frame number (may be negative): decorrelates this frame's noise from other "
-                "frames' (same scene, same seed); fills #### in -o");
+  auto* frame = r->add_option("--frame", o->frame,
+                              "Frame number (may be negative): the scene's state at that frame "
+                              "(keys, #### files), a seed of its own; fills #### in -o");
+  r->add_option("--frames", o->frames,
+                "Render frames 1-24, 1-24x2, 1,5,9 in turn, each as with --frame; -o needs ####")
+      ->excludes(frame);
   r->add_flag("--partial", o->partial,
               "Write a partial render (exact sample sums) for `vesper merge` instead of an EXR");
   r->add_flag("--scene-dir-only", o->scene_dir_only,
@@ -196,6 +199,9 @@ void add_vdb(CLI::App& app, Dispatch& dispatch) {
                  "fBm displacement (cloud half-widths, 0..0.3)");
   vc->add_option("--noise-octaves", c->noise_octaves, "fBm octaves (0..12)");
   vc->add_option("--grid", c->grid, "Grid name (default density)");
+  vc->add_option("--frames", c->frames,
+                 "An evolving cloud, one file a frame (1-24, 1-24x2): -o needs #### (frame 1 is "
+                 "the still cloud)");
   add_quiet(vc, &c->quiet);
   dispatch.on(vc, [c] { return run_vdb_cloud(*c); });
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -11,6 +12,8 @@
 #include "cli/frame_output.h"
 #include "cli/parent_watch.h"
 #include "cli/progress.h"
+#include "common/frame_pattern.h"
+#include "jobs/frame_range.h"
 #include "renderer/output/exr_io.h"
 #include "renderer/output/metadata_keys.h"
 #include "renderer/output/partial_io.h"
@@ -21,6 +24,8 @@
 
 namespace vesper::cli {
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 std::vector<Aov> parse_aovs(const std::string& list) {
   std::vector<Aov> aovs;
@@ -79,10 +84,8 @@ void log_sampling(const std::map<std::string, std::string>& meta) {
                meta.count(key::kNoiseReached) ? meta.at(key::kNoiseReached) : "not measured");
 }
 
-}  // namespace
-
-int run_render(const RenderCommandOptions& o) {
-  if (!die_with_parent()) return 1;
+// One frame (or the scene without a frame): what `vesper render` did before --frames.
+int render_one(const RenderCommandOptions& o) {
   RenderOptions ro;
   SceneDescription desc;
   std::unique_ptr<FrameOutput> output;
@@ -158,7 +161,50 @@ int run_render(const RenderCommandOptions& o) {
                  mrays);
   if (!o.quiet) log_sampling(result.image.metadata);
   std::printf("%s\n", out_path.string().c_str());
+  std::fflush(stdout);  // a line per frame as it is written (--frames)
   return 0;
+}
+
+// --frames: each frame as `vesper render --frame N` renders it, in order. A
+// frame that fails stops the run naming it; the frames written before stay.
+int render_frames(const RenderCommandOptions& o) {
+  std::vector<int> frames;
+  try {
+    frames = parse_frame_range(*o.frames);
+    if (frames.size() > 1 && !has_frame_pattern(o.output))
+      throw OutputError(o.output + ": " + std::to_string(frames.size()) +
+                        " frames need a frame pattern ('#') in the output name, e.g. shot.####" +
+                        std::filesystem::path(o.output).extension().string());
+    FrameOutput(o.output, o.partial);  // a bad -o fails before the first frame
+  } catch (const FrameRangeError& e) {
+    spdlog::error("--frames: {}", e.what());
+    return 2;
+  } catch (const OutputError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  const Clock::time_point start = Clock::now();
+  for (size_t i = 0; i < frames.size(); ++i) {
+    RenderCommandOptions one = o;
+    one.frames.reset();
+    one.frame = frames[i];
+    if (const int rc = render_one(one); rc != 0) {
+      spdlog::error("frame {} ({} of {}) failed; the {} frames before it are written", frames[i],
+                    i + 1, frames.size(), i);
+      return rc;
+    }
+    if (!o.quiet)
+      spdlog::info("frame {} done ({} of {}, {:.1f} s so far)", frames[i], i + 1, frames.size(),
+                   std::chrono::duration<double>(Clock::now() - start).count());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_render(const RenderCommandOptions& o) {
+  if (!die_with_parent()) return 1;
+  return o.frames ? render_frames(o) : render_one(o);
 }
 
 }  // namespace vesper::cli

@@ -3,6 +3,9 @@
 // environment images, VDB volumes: any "file" string in the scene JSON) becomes
 // an asset with a safe relative name, and the scene is rewritten to use those
 // names, so a worker with no shared filesystem renders exactly the same inputs.
+// A per-frame file (`smoke.####.vdb`, common/frame_pattern.h) packs the files
+// of the job's frames only, under a folder named by the sequence's hash, and
+// the scene keeps the pattern: "assets/<12 hex>/smoke.####.vdb".
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -21,7 +24,8 @@ struct PackedScene {
 };
 
 // Throws std::runtime_error naming the scene file and the JSON path of a
-// reference that cannot be read.
-PackedScene pack_scene(const std::filesystem::path& scene_file);
+// reference that cannot be read (for a sequence, the frame and its file).
+// `frames` are the job's frames: those of a sequence that are packed.
+PackedScene pack_scene(const std::filesystem::path& scene_file, const std::vector<int>& frames);
 
 }  // namespace vesper::cli

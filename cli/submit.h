@@ -30,8 +30,9 @@ void apply_sampling_flags(BudgetRequest& sampling, const SamplingFlags& flags);
 // `r` with what it leaves to the scene taken from the scene's render
 // settings (spp; noise target, min/max spp, time limit), checked together
 // as `vesper render` checks them. Throws SceneError for a bad scene,
-// JobRequestError naming the flag (--min-spp) and key (min_spp).
-JobRequest settle_job_request(JobRequest r);
+// JobRequestError naming the flag (--min-spp) and key (min_spp). The scene
+// is loaded at `first_frame`, the job's first (a sequence need not start at 1).
+JobRequest settle_job_request(JobRequest r, int first_frame);
 
 struct Submitted {
   long long id = 0;

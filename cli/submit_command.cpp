@@ -96,8 +96,8 @@ void check_cryptomatte_split(const JobRequest& r, const RenderDesc& render) {
 
 }  // namespace
 
-JobRequest settle_job_request(JobRequest r) {
-  const RenderDesc render = load_scene(r.scene).render;
+JobRequest settle_job_request(JobRequest r, int first_frame) {
+  const RenderDesc render = load_scene(r.scene, {.frame = double(first_frame)}).render;
   if (r.spp <= 0) r.spp = render.spp;
   BudgetRequest& b = r.sampling;
   if (!b.budget.noise_target) b.budget.noise_target = render.noise_target;
@@ -126,9 +126,9 @@ Submitted submit_job(FarmClient& client, const JobRequest& request, bool dry_run
   // The scene is checked here, where its author can fix it, before anything is
   // uploaded (and fills in what the request leaves to it); the frame range
   // too (the server checks again).
-  const JobRequest r = settle_job_request(request);
-  parse_frame_range(r.frames);
-  const PackedScene packed = pack_scene(r.scene);
+  const std::vector<int> frames = parse_frame_range(request.frames);
+  const JobRequest r = settle_job_request(request, frames.front());
+  const PackedScene packed = pack_scene(r.scene, frames);
 
   protocol::SubmitRequest body;
   // A dry run uploads nothing: the blobs are named by their local hashes

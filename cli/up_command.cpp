@@ -106,8 +106,9 @@ UpPlan plan_up(const UpCommandOptions& o) {
   // each task's own scene setup and a merge — bench/farm_overhead.sh.)
   int concurrent = p.workers;
   try {
-    const JobRequest r = settle_job_request(p.request);
-    const int frames = int(parse_frame_range(r.frames).size());
+    const std::vector<int> list = parse_frame_range(p.request.frames);
+    const JobRequest r = settle_job_request(p.request, list.front());
+    const int frames = int(list.size());
     const int spp = r.sampling.frame_spp(r.spp);
     const int per_frame =
         r.samples_per_task > 0 ? (spp + r.samples_per_task - 1) / r.samples_per_task : 1;

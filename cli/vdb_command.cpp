@@ -10,10 +10,29 @@
 #include <stdexcept>
 
 #include "cli/commands.h"
+#include "common/frame_pattern.h"
+#include "jobs/frame_range.h"
 #include "renderer/volume/cloud.h"
 #include "renderer/volume/vdb_io.h"
 
 namespace vesper::cli {
+
+namespace {
+
+// The frames to write and where: one file without --frames, else a file a frame.
+std::vector<std::pair<int, std::filesystem::path>> cloud_files(const VdbCloudOptions& o) {
+  if (!o.frames) return {{1, o.output}};
+  const std::vector<int> frames = parse_frame_range(*o.frames);  // FrameRangeError
+  if (frames.size() > 1 && !has_frame_pattern(o.output))
+    throw std::invalid_argument(o.output + ": " + std::to_string(frames.size()) +
+                                " frames need a frame pattern ('#') in the output name, e.g. "
+                                "cloud.####.vdb");
+  std::vector<std::pair<int, std::filesystem::path>> out;
+  for (const int f : frames) out.emplace_back(f, frame_path(o.output, f));
+  return out;
+}
+
+}  // namespace
 
 int run_vdb_cloud(const VdbCloudOptions& o) {
   CloudParams p;
@@ -24,13 +43,23 @@ int run_vdb_cloud(const VdbCloudOptions& o) {
   if (o.noise_amplitude) p.noise_amplitude = *o.noise_amplitude;
   if (o.noise_octaves) p.noise_octaves = *o.noise_octaves;
   try {
-    const auto t0 = std::chrono::steady_clock::now();
-    const DenseVolume v = generate_cloud(p);
-    write_vdb_fog_volume(v, o.grid, o.output);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!o.quiet)
-      spdlog::info("cloud: {}x{}x{} voxels of {:g} units, seed {}, grid '{}' written in {:.2f} s",
-                   v.nx, v.ny, v.nz, v.voxel_size, p.seed, o.grid, s);
+    for (const auto& [frame, file] : cloud_files(o)) {
+      const auto t0 = std::chrono::steady_clock::now();
+      p.time = double(frame) - 1;
+      const DenseVolume v = generate_cloud(p);
+      write_vdb_fog_volume(v, o.grid, file);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (!o.quiet)
+        spdlog::info(
+            "cloud{}: {}x{}x{} voxels of {:g} units, seed {}, grid '{}' written in {:.2f} s",
+            o.frames ? fmt::format(" frame {}", frame) : "", v.nx, v.ny, v.nz, v.voxel_size, p.seed,
+            o.grid, s);
+      std::printf("%s\n", file.c_str());
+      std::fflush(stdout);
+    }
+  } catch (const FrameRangeError& e) {
+    spdlog::error("--frames: {}", e.what());
+    return 2;
   } catch (const std::invalid_argument& e) {
     spdlog::error("{}", e.what());
     return 2;
@@ -38,7 +67,6 @@ int run_vdb_cloud(const VdbCloudOptions& o) {
     spdlog::error("{}", e.what());
     return 2;
   }
-  std::printf("%s\n", o.output.c_str());
   return 0;
 }
 

@@ -2,6 +2,9 @@
 
 #include <cstdio>
 
+#include "common/frame_pattern.h"
+#include "common/keyframes.h"
+
 namespace vesper {
 
 SceneHash::SceneHash(const nlohmann::json& doc) { add_sized(doc.dump()); }
@@ -44,6 +47,23 @@ std::vector<std::string> hashed_file_references(const nlohmann::json& doc) {
   if (media != doc.end() && media->is_object())
     for (const auto& [name, node] : media->items()) file_of(node);
   return out;
+}
+
+nlohmann::json frame_document(const nlohmann::json& doc, double frame, const std::string& file) {
+  return has_keyframes(doc) ? evaluate_keyframes(doc, frame, file) : doc;
+}
+
+std::vector<std::string> frame_file_references(const nlohmann::json& frame_doc, long frame) {
+  std::vector<std::string> refs = hashed_file_references(frame_doc);
+  for (std::string& ref : refs) ref = frame_path(ref, frame).string();
+  return refs;
+}
+
+bool is_animated(const nlohmann::json& doc) {
+  if (has_keyframes(doc)) return true;
+  for (const std::string& ref : hashed_file_references(doc))
+    if (has_frame_pattern(ref)) return true;
+  return false;
 }
 
 }  // namespace vesper

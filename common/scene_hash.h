@@ -34,4 +34,17 @@ class SceneHash {
 // such a scene anyway).
 std::vector<std::string> hashed_file_references(const nlohmann::json& doc);
 
+// A scene over time has one state per frame (docs/scene-format.md, "Scene
+// hash"): the document of frame `frame`, every keyframed value evaluated at
+// it (common/keyframes.h; `doc` itself when nothing is keyed), with `####`
+// file patterns left as written. Throws JsonError naming `file` for bad keys.
+nlohmann::json frame_document(const nlohmann::json& doc, double frame, const std::string& file);
+
+// The files frame `frame` of a frame document reads: hashed_file_references
+// with each '#' run filled with the frame (common/frame_pattern.h).
+std::vector<std::string> frame_file_references(const nlohmann::json& frame_doc, long frame);
+
+// Whether the scene changes over frames: keyframes or a per-frame file.
+bool is_animated(const nlohmann::json& doc);
+
 }  // namespace vesper

@@ -11,6 +11,7 @@
 #include <optional>
 #include <system_error>
 
+#include "common/frame_pattern.h"
 #include "compositor/grade.h"
 #include "renderer/output/exr_io.h"
 #include "renderer/output/metadata_keys.h"

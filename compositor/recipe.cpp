@@ -2,7 +2,6 @@
 #include "compositor/recipe.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <optional>
 #include <set>
 #include <span>
@@ -10,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/frame_pattern.h"
 #include "common/json_parse.h"
 #include "common/json_reader.h"
 #include "renderer/scene/json_values.h"
@@ -31,14 +31,6 @@ const Range kCdlPower = Range::left_open(0, 100);
 const Range kCdlSaturation = Range::closed(0, 100);
 
 // The first run of '#' in the file name: (position, length), or length 0.
-std::pair<size_t, size_t> find_pattern(const std::string& name) {
-  const size_t p = name.find('#');
-  if (p == std::string::npos) return {0, 0};
-  size_t e = p;
-  while (e < name.size() && name[e] == '#') ++e;
-  return {p, e - p};
-}
-
 fs::path resolve(const fs::path& base_dir, const std::string& s) {
   const fs::path p(s);
   return p.is_absolute() ? p : (base_dir / p).lexically_normal();
@@ -47,7 +39,7 @@ fs::path resolve(const fs::path& base_dir, const std::string& s) {
 // Frame numbers of the files that match `pattern` (a run of '#' in the file name).
 std::vector<long> glob_frames(const fs::path& pattern) {
   const std::string name = pattern.filename().string();
-  const auto [pos, len] = find_pattern(name);
+  const auto [pos, len] = find_frame_pattern(name);
   const std::string prefix = name.substr(0, pos), suffix = name.substr(pos + len);
   const fs::path dir = pattern.has_parent_path() ? pattern.parent_path() : fs::path(".");
   std::vector<long> frames;
@@ -82,7 +74,7 @@ fs::path parse_output_path(JsonReader& outputs, std::string_view key, const fs::
   if (!outputs.has(key)) return {};
   const JsonReader node = outputs.child(key);
   const fs::path p = resolve(base_dir, node.as_string());
-  const auto [pos, len] = find_pattern(p.filename().string());
+  const auto [pos, len] = find_frame_pattern(p.filename().string());
   if (padding > 0 && len != size_t(padding)) {
     node.fail("the inputs are a frame sequence (" + std::string(size_t(padding), '#') +
               "): expected the same " + std::string(size_t(padding), '#') +
@@ -129,7 +121,7 @@ CompInput parse_input(const JsonReader& node, const std::string& name, const fs:
   in.name = name;
   in.json_path = node.path();
   in.path = resolve(base_dir, node.as_string());
-  const auto [pos, len] = find_pattern(in.path.filename().string());
+  const auto [pos, len] = find_frame_pattern(in.path.filename().string());
   in.sequence = len > 0;
   if (in.path.has_parent_path() && in.path.parent_path().string().find('#') != std::string::npos)
     node.fail("a frame pattern ('#') may only appear in the file name");
@@ -316,20 +308,6 @@ auto as_comp_error(Parse parse) -> decltype(parse()) {
 }
 
 }  // namespace
-
-bool has_frame_pattern(const fs::path& path) {
-  return find_pattern(path.filename().string()).second > 0;
-}
-
-fs::path frame_path(const fs::path& pattern, long frame) {
-  std::string name = pattern.filename().string();
-  const auto [pos, len] = find_pattern(name);
-  if (len == 0) return pattern;
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%0*ld", int(len), frame);
-  name.replace(pos, len, buf);
-  return pattern.has_parent_path() ? pattern.parent_path() / name : fs::path(name);
-}
 
 fs::path default_histogram_path(const CompOutputs& outputs) {
   fs::path p = outputs.image.empty() ? outputs.exr : outputs.image;

@@ -62,11 +62,6 @@ CompRecipe parse_recipe_text(const std::string& text, const std::filesystem::pat
 CompRecipe parse_recipe(const nlohmann::json& doc, const std::filesystem::path& base_dir,
                         const std::string& label);
 
-// Whether a path holds a frame pattern (a run of '#'), and the path with the
-// pattern replaced by the zero-padded frame number.
-bool has_frame_pattern(const std::filesystem::path& path);
-std::filesystem::path frame_path(const std::filesystem::path& pattern, long frame);
-
 // The histogram JSON written when the recipe names none: `<image stem>.hist.json`
 // next to the image (or the EXR when there is no image).
 std::filesystem::path default_histogram_path(const CompOutputs& outputs);

@@ -4,6 +4,7 @@
 // paused with their job. A job ends done, failed or canceled (docs/farm.md,
 // "Job lifecycle").
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -46,6 +47,10 @@ struct JobSpec {
   // Seconds one render of a task may take before its worker kills it (and
   // fails the attempt); unset: the server's default.
   std::optional<double> task_timeout;
+  // frame -> the frame's state (jobs/frame_states.h), set by the server at
+  // submit: result reuse keys each task on it instead of on the scene blob.
+  // Empty: reuse keys on the scene blob and assets (the whole job).
+  std::map<int, std::string> frame_states;
 };
 
 enum class TaskState { Queued, Leased, Done, Failed, Canceled, Paused };

@@ -151,17 +151,20 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   std::vector<int> frames = spec.frames;
   std::sort(frames.begin(), frames.end());
   frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
-  for (int frame : frames)
+  for (int frame : frames) {
+    const auto state = spec.frame_states.find(frame);
     for (int b = 0; b < spec.spp; b += split) {
       sql::Stmt(db,
-                "INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(?1, ?2, "
-                "?3, ?4, 'queued')")
+                "INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state, frame_state) "
+                "VALUES(?1, ?2, ?3, ?4, 'queued', ?5)")
           .bind(1, job)
           .bind(2, int64_t(frame))
           .bind(3, int64_t(b))
           .bind(4, int64_t(std::min(spec.spp, b + split)))
+          .bind(5, state == spec.frame_states.end() ? std::string() : state->second)
           .run();
     }
+  }
   tx.commit();
   return job;
 }

@@ -11,27 +11,32 @@ std::string inputs_key(const JobSpec& spec) {
   std::vector<std::string> assets;
   for (const Asset& a : spec.assets) assets.push_back(a.name + "=" + a.blob);
   std::sort(assets.begin(), assets.end());
-  std::string key = spec.scene + ";spp=" + std::to_string(spec.spp);
+  // With frame states, the scene and its assets are in each task's state:
+  // the jobs of two versions of a scene share a key, their tasks match by state.
+  const bool by_frame = !spec.frame_states.empty();
+  std::string key = (by_frame ? "frame-state" : spec.scene) + ";spp=" + std::to_string(spec.spp);
   // Only what is set, so a job without a budget keeps the key it always had.
   const RenderBudget& b = spec.budget;
   if (b.noise_target) key += ";noise_target=" + exact_text(*b.noise_target);
   if (b.min_spp) key += ";min_spp=" + std::to_string(*b.min_spp);
   if (b.time_limit) key += ";time_limit=" + exact_text(*b.time_limit);
   key += overrides_key(spec.overrides);
-  for (const auto& a : assets) key += ";" + a;
+  if (!by_frame)
+    for (const auto& a : assets) key += ";" + a;
   return key;
 }
 
 bool complete_from_identical_task(JobStore::Impl& store, int64_t task_id,
                                   const std::string& renderer, double now) {
   if (renderer.empty()) return false;
-  sql::Stmt same(store.db,
-                 "SELECT d.id, d.result FROM tasks t JOIN jobs j ON j.id = t.job_id "
-                 "JOIN tasks d ON d.state = 'done' AND d.frame = t.frame AND "
-                 "d.sample_begin = t.sample_begin AND d.sample_end = t.sample_end AND "
-                 "d.renderer = ?2 AND d.result <> '' AND d.id <> t.id "
-                 "JOIN jobs dj ON dj.id = d.job_id AND dj.inputs_key = j.inputs_key "
-                 "WHERE t.id = ?1 AND j.inputs_key <> '' ORDER BY d.id LIMIT 1");
+  sql::Stmt same(
+      store.db,
+      "SELECT d.id, d.result FROM tasks t JOIN jobs j ON j.id = t.job_id "
+      "JOIN tasks d ON d.state = 'done' AND d.frame = t.frame AND "
+      "d.sample_begin = t.sample_begin AND d.sample_end = t.sample_end AND "
+      "d.renderer = ?2 AND d.result <> '' AND d.id <> t.id AND d.frame_state = t.frame_state "
+      "JOIN jobs dj ON dj.id = d.job_id AND dj.inputs_key = j.inputs_key "
+      "WHERE t.id = ?1 AND j.inputs_key <> '' ORDER BY d.id LIMIT 1");
   same.bind(1, task_id).bind(2, renderer);
   if (!same.step()) return false;
   const int64_t source = same.i64(0);

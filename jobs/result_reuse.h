@@ -1,7 +1,8 @@
 #pragma once
 // Result reuse: identical tasks are rendered once. Two tasks are identical
-// when their jobs' inputs keys (scene blob, spp, render budget, render overrides, assets), frames
-// and sample ranges are equal and the same renderer (an opaque id, e.g. the renderer executable's
+// when their jobs' inputs keys (scene blob, spp, render budget, render overrides, assets), frames,
+// frame states (jobs/frame_states.h; then the key leaves out the scene blob and assets) and
+// sample ranges are equal and the same renderer (an opaque id, e.g. the renderer executable's
 // sha256) produced the done one.
 #include <cstdint>
 #include <string>
@@ -14,7 +15,8 @@ namespace vesper {
 // the scene blob, the spp, the render budget (noise target, min spp, time
 // limit: a different target is a different result), the render overrides
 // (AOVs, per-layer variance, seed, film scale) and the assets (name=blob, in
-// name order).
+// name order). A job with frame states leaves the scene and assets out: its
+// tasks' states hold them, frame by frame.
 std::string inputs_key(const JobSpec& spec);
 
 // Completes queued task `task_id` with the result of an identical task already

@@ -3,6 +3,8 @@
 // scene document (meshes, environment images, VDB grids; docs/scene-format.md),
 // with its JSON path. `vesper submit` packs them as assets; the server
 // refuses a job whose scene references a file outside the task directory.
+// A per-frame file (`smoke.####.vdb`) is listed as written: a '#' run
+// expands to digits, so the rule holds for every frame.
 #include <optional>
 #include <string>
 #include <vector>

@@ -9,6 +9,7 @@
 
 #include "common/json_error.h"
 #include "common/json_parse.h"
+#include "jobs/frame_states.h"
 #include "jobs/scene_references.h"
 #include "protocol/fields.h"
 #include "protocol/job_messages.h"
@@ -99,8 +100,20 @@ void require_blobs(const BlobStore& blobs, const JobSpec& spec) {
                    std::string("/") + f::kAssets + "/" + std::to_string(i) + "/" + f::kBlob);
 }
 
+// Each frame's state, for result reuse by frame (jobs/frame_states.h); none
+// when the scene blob is missing or not JSON (reuse then keys on the blob).
+std::map<int, std::string> states_of_frames(const BlobStore& blobs, const JobSpec& spec) {
+  const auto file = blobs.file(spec.scene);
+  if (!file) return {};
+  try {
+    return frame_states(read_json_file(*file, "the scene blob"), spec);
+  } catch (const JsonError&) {
+    return {};
+  }
+}
+
 ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
-  const JobSpec spec = read_job_request(req.body);
+  JobSpec spec = read_job_request(req.body);
   const std::string dry = req.query_value(std::string(protocol::kDryRunParam));
   const bool dry_run = dry == "1" || dry == "true";
   // A dry run needs no blobs (`vesper submit --dry-run` uploads nothing); a
@@ -110,6 +123,7 @@ ApiResponse submit(const JobHandlerDeps& d, const ApiRequest& req) {
   const int64_t n = task_count(spec);
   if (dry_run)
     return json_response(200, protocol::DryRunResponse{spec.name, int64_t(spec.frames.size()), n});
+  spec.frame_states = states_of_frames(d.blobs, spec);
   const double uploaded_before = BlobStore::now();
   const double now = d.clock.now();
   int reused = 0;

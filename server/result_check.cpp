@@ -146,20 +146,25 @@ ExpectedResult ResultExpectations::of(const Lease& lease) {
 }
 
 ResultExpectations::Scene ResultExpectations::scene(const Lease& lease) {
+  const int64_t job = lease.task.job_id;
+  const int frame = lease.task.frame;
   {
     std::lock_guard lock(mutex_);
-    if (const auto it = scenes_.find(lease.task.job_id); it != scenes_.end()) return it->second;
+    for (const int key : {kEveryFrame, frame})
+      if (const auto it = scenes_.find({job, key}); it != scenes_.end()) return it->second;
   }
   const auto scene_file = blobs_.file(lease.scene);
   if (!scene_file) throw std::runtime_error("the job's scene blob " + lease.scene + " is missing");
-  const nlohmann::json doc = parse_json(read_file(*scene_file, "the scene"), "scene");
+  const nlohmann::json raw = parse_json(read_file(*scene_file, "the scene"), "scene");
+  // The renderer hashes the document of the frame it loads (--frame N).
+  const nlohmann::json doc = frame_document(raw, frame, "scene");
   Scene scene;
   const auto render = doc.find("render");
   if (render != doc.end() && render->is_object() && render->contains("seed") &&
       render->at("seed").is_number_unsigned())
     scene.seed = render->at("seed").get<uint64_t>();
   SceneHash hash(doc);
-  for (const std::string& ref : hashed_file_references(doc)) {
+  for (const std::string& ref : frame_file_references(doc, frame)) {
     // The worker renders in a directory holding the assets by name
     // (--scene-dir-only): a reference names the asset at its normal path.
     const std::string want = fs::path(ref).lexically_normal().generic_string();
@@ -174,7 +179,7 @@ ResultExpectations::Scene ResultExpectations::scene(const Lease& lease) {
   }
   scene.hash = hash.hex();
   std::lock_guard lock(mutex_);
-  return scenes_[lease.task.job_id] = scene;
+  return scenes_[{job, is_animated(raw) ? frame : kEveryFrame}] = scene;
 }
 
 }  // namespace vesper

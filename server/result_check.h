@@ -10,11 +10,13 @@
 //
 // Not a proof of honest pixels: a worker can still upload a valid image of
 // the right metadata and wrong pixels (docs/farm.md, "Not enforced yet").
+#include <climits>
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <mutex>
 #include <string>
+#include <utility>
 
 #include "jobs/job.h"
 
@@ -37,7 +39,9 @@ struct ExpectedResult {
 std::string check_result(const std::filesystem::path& file, const ExpectedResult& expected);
 
 // ExpectedResult of a current lease. The scene hash of a job (its scene blob
-// and assets never change) is computed once and kept. Thread safe.
+// and assets never change) is computed once and kept: once per job for a
+// still scene, once per frame for a scene over time (keys, `####` files:
+// the hash of the frame's state, docs/scene-format.md "Scene hash"). Thread safe.
 class ResultExpectations {
  public:
   explicit ResultExpectations(const BlobStore& blobs) : blobs_(blobs) {}
@@ -53,7 +57,10 @@ class ResultExpectations {
   Scene scene(const Lease& lease);
   const BlobStore& blobs_;
   std::mutex mutex_;
-  std::map<int64_t, Scene> scenes_;  // job id -> its scene (scene and assets never change)
+  // (job id, frame) -> its scene (scene and assets never change); a still
+  // scene's under kEveryFrame.
+  static constexpr int kEveryFrame = INT_MIN;
+  std::map<std::pair<int64_t, int>, Scene> scenes_;
 };
 
 }  // namespace vesper

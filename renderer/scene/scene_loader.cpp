@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/frame_pattern.h"
 #include "common/json_parse.h"
 #include "common/keyframes.h"
 #include "common/scene_hash.h"
@@ -198,13 +199,44 @@ std::string content_hash(const nlohmann::json& doc, const SceneParseContext& ctx
 SceneDescription parse_frame_document(const nlohmann::json& doc, const std::filesystem::path& file,
                                       const SceneLoadOptions& options);
 
+// The frame whose files a scene loaded at `time` reads: the nearest whole frame.
+long file_frame(double time) { return std::lround(time); }
+
+// "7", or "7.25" for a time between frames.
+std::string frame_text(double frame) {
+  if (frame == std::floor(frame) && std::abs(frame) < 1e15) return std::to_string(int64_t(frame));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", frame);
+  return buf;
+}
+
+// Whether the value at `path` of `doc`, or a value containing it, is keyframed.
+bool keyed_at(const nlohmann::json& doc, const std::string& path) {
+  try {
+    for (nlohmann::json::json_pointer p(path);; p = p.parent_pointer()) {
+      if (doc.contains(p) && is_keyframed(doc.at(p))) return true;
+      if (p.empty()) return false;
+    }
+  } catch (const nlohmann::json::exception&) {  // not a pointer into doc
+    return false;
+  }
+}
+
 // A scene over time is parsed as the document of one frame: every keyframed
 // value evaluated at options.frame. A scene without keys is its own frame
-// document, so its hash is what it always was.
+// document, so its hash is what it always was. A value refused after
+// evaluation says so, and at which frame, since the file holds no such value.
 SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem::path& file,
                                 const SceneLoadOptions& options) {
   if (!has_keyframes(doc)) return parse_frame_document(doc, file, options);
-  return parse_frame_document(evaluate_keyframes(doc, options.frame, file.string()), file, options);
+  const nlohmann::json frame_doc = evaluate_keyframes(doc, options.frame, file.string());
+  try {
+    return parse_frame_document(frame_doc, file, options);
+  } catch (const JsonError& e) {
+    if (!keyed_at(doc, e.json_path())) throw;
+    throw SceneError(e.file(), e.json_path(),
+                     e.message() + " (keyed; at frame " + frame_text(options.frame) + ")");
+  }
 }
 
 SceneDescription parse_frame_document(const nlohmann::json& doc, const std::filesystem::path& file,
@@ -213,6 +245,7 @@ SceneDescription parse_frame_document(const nlohmann::json& doc, const std::file
   ctx.file = file.string();
   ctx.base_dir = file.parent_path();
   ctx.scene_dir_only = options.scene_dir_only;
+  ctx.frame = file_frame(options.frame);
   JsonReader root(doc, ctx.file, "");
   root.expect_object();
 
@@ -276,7 +309,14 @@ std::filesystem::path SceneParseContext::resolve(const JsonReader& node) const {
     if (const std::string why = outside_reference_problem(ref); !why.empty())
       node.fail("'" + ref + "' " + why);
   const std::filesystem::path p(ref);
-  return p.is_absolute() ? p : base_dir / p;
+  const std::filesystem::path pattern = p.is_absolute() ? p : base_dir / p;
+  if (!has_frame_pattern(pattern)) return pattern;
+  const std::filesystem::path file = frame_path(pattern, frame);
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    node.fail("frame " + std::to_string(frame) + " of the sequence '" + ref +
+              "': " + file.string() + " does not exist");
+  return file;
 }
 
 uint32_t SceneParseContext::material(JsonReader& node, std::string_view key) const {

@@ -27,6 +27,7 @@ struct SceneLoadOptions {
   bool scene_dir_only = false;
   // The time keyframed values are evaluated at (common/keyframes.h), in
   // frames: `vesper render --frame N`; 1 (the first frame) without one.
+  // Per-frame files (`smoke.####.vdb`) are read at the nearest whole frame.
   double frame = 1;
 };
 

@@ -22,13 +22,15 @@ struct SceneParseContext {
   std::string file;                // the scene file, for messages
   std::filesystem::path base_dir;  // relative paths resolve against this
   bool scene_dir_only = false;     // SceneLoadOptions::scene_dir_only
+  long frame = 1;                  // fills the '#' run of per-frame files (common/frame_pattern.h)
   std::vector<std::string> material_names;
   std::vector<std::filesystem::path>
       referenced_files;  // meshes, images and .vdb files, for the hash
 
   // The file named by the string `node` (a "file" key): relative to base_dir,
   // absolute as it is — unless scene_dir_only, which refuses (at `node`) a
-  // path that could leave base_dir (common/scene_reference.h).
+  // path that could leave base_dir (common/scene_reference.h). A '#' run in
+  // the file name is `frame`; a missing frame of a sequence is refused at `node`.
   std::filesystem::path resolve(const JsonReader& node) const;
   // Index of the material named by `key`; the error lists the known names.
   uint32_t material(JsonReader& node, std::string_view key) const;

@@ -79,6 +79,26 @@ struct Sphere {
   float x, y, z, r;
 };
 
+// How the cloud has changed after `time` frames (CloudParams::time): smooth
+// in time, and exactly the still cloud at 0 (cos 1, sin 0, drift 0, growth 1).
+struct Evolution {
+  float cos_turn = 1, sin_turn = 0;  // the noise domain's turn about +y
+  float drift = 0;                   // the noise domain's shift along +x, cloud half-widths
+  float growth = 1;                  // the puffs' radius factor
+};
+
+Evolution evolution(double time) {
+  if (!std::isfinite(time)) throw std::invalid_argument("cloud time must be finite");
+  Evolution e;
+  if (time == 0) return e;
+  const double turn = 0.015 * time;  // radians per frame
+  e.cos_turn = float(std::cos(turn));
+  e.sin_turn = float(std::sin(turn));
+  e.drift = float(0.02 * time);
+  e.growth = float(1.0 + 0.2 * std::tanh(time / 48.0));
+  return e;
+}
+
 }  // namespace
 
 float smooth_min(float a, float b, float k) {
@@ -143,6 +163,8 @@ DenseVolume generate_cloud(const CloudParams& p) {
   }
   const float base_y = -0.12f;
   const std::uint32_t noise_seed = std::uint32_t(rng.next());
+  const Evolution evo = evolution(p.time);
+  for (Sphere& s : spheres) s.r *= evo.growth;
 
   DenseVolume vol;
   vol.nx = vol.nz = p.resolution;
@@ -170,8 +192,10 @@ DenseVolume generate_cloud(const CloudParams& p) {
           continue;  // far outside: |fbm| <~ 1.05 cannot reach
         // Displacement is weaker at the flat base (cumulus bottoms are smooth).
         const float base_fade = std::clamp((y - base_y) / 0.15f, 0.25f, 1.0f);
+        const float nx = evo.cos_turn * x - evo.sin_turn * z + evo.drift;
+        const float nz = evo.sin_turn * x + evo.cos_turn * z;
         d += p.noise_amplitude * base_fade *
-             fbm(x * p.noise_frequency, y * p.noise_frequency, z * p.noise_frequency,
+             fbm(nx * p.noise_frequency, y * p.noise_frequency, nz * p.noise_frequency,
                  p.noise_octaves, noise_seed);
         // Fog volume: 0 outside, smooth ramp to 1 over the band inside the surface.
         const float t = std::clamp(-d / p.density_band, 0.0f, 1.0f);

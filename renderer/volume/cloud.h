@@ -19,6 +19,10 @@ struct CloudParams {
   int spheres = 12;              // including the central one
   float smoothness = 0.12f;      // polynomial smooth-min k, in cloud half-widths
   float density_band = 0.06f;    // inside distance over which density rises 0 -> 1
+  // Frames since the first (`vesper vdb cloud --frames`: frame - 1). The cloud
+  // evolves smoothly: its noise domain drifts along +x and turns about +y,
+  // and its puffs grow (towards 1.2x, tanh-shaped). 0 is the still cloud, bitwise.
+  double time = 0;
 };
 
 // Throws std::invalid_argument for out-of-range parameters. Deterministic:

@@ -64,4 +64,28 @@ TEST_F(VdbCli, CloudIntoAMissingDirectoryIsBadInput) {
   EXPECT_NE(r.err.find("cannot write"), std::string::npos) << r.err;
 }
 
+TEST_F(VdbCli, CloudFramesWriteAnEvolvingSequenceThatLoads) {
+  const RunResult r =
+      run("cloud --frames 1-3 -q --resolution 24 -o " + (dir_ / "cloud.####.vdb").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, (dir_ / "cloud.0001.vdb").string() + "\n" + (dir_ / "cloud.0002.vdb").string() +
+                       "\n" + (dir_ / "cloud.0003.vdb").string() + "\n");
+  for (int f = 1; f <= 3; ++f) {
+    const auto grid =
+        vesper::load_vdb_grid(dir_ / ("cloud.000" + std::to_string(f) + ".vdb"), "density");
+    EXPECT_FALSE(grid->active_box().empty()) << f;
+  }
+  // Frame 1 is the still cloud.
+  ASSERT_EQ(run("cloud -q --resolution 24 -o " + (dir_ / "still.vdb").string()).exit_code, 0);
+  const auto still = vesper::load_vdb_grid(dir_ / "still.vdb", "density");
+  const auto first = vesper::load_vdb_grid(dir_ / "cloud.0001.vdb", "density");
+  EXPECT_EQ(still->max_value(), first->max_value());
+  EXPECT_EQ(still->active_box().min, first->active_box().min);
+  EXPECT_EQ(still->active_box().max, first->active_box().max);
+  // Several frames need a pattern.
+  const RunResult bad = run("cloud --frames 1-2 --resolution 16 -o " + (dir_ / "c.vdb").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("frame pattern"), std::string::npos) << bad.err;
+}
+
 }  // namespace

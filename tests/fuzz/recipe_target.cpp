@@ -2,6 +2,7 @@
 // comp recipe.json` reads it). The documented error is CompError. Paths
 // resolve in the sandbox, which holds frame.exr, frame.0001/0002.exr,
 // other.0001/0002.exr, look.cube, config.ocio and an out/ folder.
+#include "common/frame_pattern.h"
 #include "compositor/recipe.h"
 #include "compositor/rgba_image.h"
 #include "tests/fuzz/fuzz_target.h"

@@ -19,7 +19,7 @@ namespace vesper {
 namespace {
 
 JobSpec spec(std::vector<int> frames, int spp = 8, int split = 0) {
-  return JobSpec{"job", "scene-sha", std::move(frames), spp, split, 50, 3, {}, {}, {}, {}};
+  return JobSpec{"job", "scene-sha", std::move(frames), spp, split, 50, 3, {}, {}, {}, {}, {}};
 }
 
 std::vector<int> frames_1_to(int n) {

@@ -16,7 +16,7 @@ class HousekeepingStoreTest : public ::testing::Test {
  protected:
   std::filesystem::path db() const { return dir_ / "jobs.sqlite"; }
   static JobSpec spec(const std::string& scene, std::vector<Asset> assets = {}) {
-    return JobSpec{"job", scene, {1, 2}, 8, 0, 50, 3, std::move(assets), {}, {}, {}};
+    return JobSpec{"job", scene, {1, 2}, 8, 0, 50, 3, std::move(assets), {}, {}, {}, {}};
   }
   // Rows left with this job's id.
   int64_t rows_of(int64_t job) {

@@ -93,7 +93,7 @@ TEST(BudgetProblem, NamesTheFieldAtFault) {
 class BudgetStoreTest : public ::testing::Test {
  protected:
   static JobSpec spec(int spp, int split, RenderBudget b) {
-    return JobSpec{"job", "scene-sha", {1}, spp, split, 50, 3, {}, b, {}, {}};
+    return JobSpec{"job", "scene-sha", {1}, spp, split, 50, 3, {}, b, {}, {}, {}};
   }
   std::filesystem::path db() const { return dir_ / "jobs.sqlite"; }
   test::TempDir dir_{"jobs"};

@@ -75,5 +75,29 @@ TEST(ExampleScenes, ProceduralCloudSceneRendersFromAGeneratedVdb) {
   EXPECT_GT(render_small(d), 0.0);
 }
 
+// The animated example: its cloud sequence generated as `vesper vdb cloud
+// --frames` writes it (smaller), loaded at two frames of the shot.
+TEST(ExampleScenes, TheShotLoadsAtTwoFramesAndTheyDiffer) {
+  const test::TempDir dir("shot");
+  CloudParams p;
+  p.resolution = 32;
+  p.voxel_size = 2.56 / 32;
+  for (const int f : {1, 24}) {
+    p.time = f - 1;
+    write_vdb_fog_volume(generate_cloud(p), "density",
+                         dir / (f == 1 ? "cloud.0001.vdb" : "cloud.0024.vdb"));
+  }
+  fs::copy_file(kScenes / "shot/scene.json", dir / "scene.json");
+  const SceneDescription first = load_scene(dir / "scene.json", {.frame = 1});
+  const SceneDescription last = load_scene(dir / "scene.json", {.frame = 24});
+  EXPECT_NE(first.camera.from.x, last.camera.from.x);
+  EXPECT_NE(first.content_hash, last.content_hash);
+  EXPECT_NE(std::get<VdbMediumDesc>(first.media.at(0).medium).file,
+            std::get<VdbMediumDesc>(last.media.at(0).medium).file);
+  EXPECT_NE(render_small(first), render_small(last));
+  // A frame whose cloud was not generated is named.
+  EXPECT_THROW(load_scene(dir / "scene.json", {.frame = 12}), SceneError);
+}
+
 }  // namespace
 }  // namespace vesper

@@ -1,0 +1,65 @@
+// Per-frame states for result reuse (jobs/frame_states.h).
+#include <gtest/gtest.h>
+
+#include "jobs/frame_states.h"
+
+namespace vesper {
+namespace {
+
+using nlohmann::json;
+
+JobSpec spec_of(std::vector<int> frames, std::vector<Asset> assets) {
+  JobSpec s;
+  s.frames = std::move(frames);
+  s.assets = std::move(assets);
+  return s;
+}
+
+TEST(FrameStates, AStillSceneHasOneStateForEveryFrame) {
+  const json scene =
+      json::parse(R"({"camera": {"fov": 30}, "shapes": [{"file": "assets/a.obj"}]})");
+  const auto states = frame_states(scene, spec_of({1, 2, 9}, {{"assets/a.obj", "b1"}}));
+  ASSERT_EQ(states.size(), 3u);
+  EXPECT_EQ(states.at(1), states.at(9));
+  // The asset's blob is part of the state.
+  EXPECT_NE(frame_states(scene, spec_of({1}, {{"assets/a.obj", "b2"}})).at(1), states.at(1));
+}
+
+TEST(FrameStates, AnEditOfKeysChangesOnlyTheFramesItChanges) {
+  const json before =
+      json::parse(R"({"camera": {"fov": {"keys": [[1, 30], [10, 30], [20, 50]]}}})");
+  json after = before;
+  after["camera"]["fov"]["keys"][2][1] = 60;
+  std::vector<int> frames;
+  for (int f = 1; f <= 24; ++f) frames.push_back(f);
+  const auto a = frame_states(before, spec_of(frames, {}));
+  const auto b = frame_states(after, spec_of(frames, {}));
+  for (int f = 1; f <= 24; ++f) {
+    if (f <= 10)
+      EXPECT_EQ(a.at(f), b.at(f)) << f;
+    else
+      EXPECT_NE(a.at(f), b.at(f)) << f;
+  }
+  EXPECT_EQ(a.at(1), a.at(10));  // the same evaluated document
+  EXPECT_NE(a.at(10), a.at(11));
+}
+
+TEST(FrameStates, FramesThatReadDifferentFilesDiffer) {
+  const json scene = json::parse(R"({"media": {"s": {"file": "assets/f/smoke.##.vdb"}}})");
+  const auto states = frame_states(scene, spec_of({1, 2, 3}, {{"assets/f/smoke.01.vdb", "x"},
+                                                              {"assets/f/smoke.02.vdb", "y"},
+                                                              {"assets/f/smoke.03.vdb", "x"}}));
+  ASSERT_EQ(states.size(), 3u);
+  EXPECT_NE(states.at(1), states.at(2));
+  EXPECT_EQ(states.at(1), states.at(3));  // same document, same bytes
+}
+
+TEST(FrameStates, NoStatesWhenAFrameCannotBeTold) {
+  const json seq = json::parse(R"({"media": {"s": {"file": "assets/smoke.#.vdb"}}})");
+  EXPECT_TRUE(frame_states(seq, spec_of({1, 2}, {{"assets/smoke.1.vdb", "x"}})).empty());
+  const json bad = json::parse(R"({"camera": {"fov": {"keys": []}}})");
+  EXPECT_TRUE(frame_states(bad, spec_of({1}, {})).empty());
+}
+
+}  // namespace
+}  // namespace vesper
