@@ -52,7 +52,8 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y)};
   const float f = phase.eval(-ray.dir, ls->wi);
   const Rgb tr_light =
-      shadow_transmittance<true>(scene, x, ls->wi, ls->distance * (1.f - 1e-4f), sampler, rays);
+      shadow_transmittance<true>(scene, Ray{x, ls->wi, ls->distance * (1.f - 1e-4f), ray.time},
+                                 sampler, rays);
   if (tr_light.is_black()) return out;
   const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
   const float w = power_heuristic(pdf_e, pdf_a);
