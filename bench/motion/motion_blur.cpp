@@ -56,14 +56,15 @@ Mesh displaced_sphere(int segments, int rings) {
     for (int s = 0; s < segments; ++s) {
       const float phi = 2.f * float(M_PI) * float(s) / float(segments);
       const float rad = 0.5f * (1.f + 0.05f * std::sin(7.f * phi) * std::sin(5.f * theta));
-      m.positions.push_back(Vec3{std::sin(theta) * std::cos(phi), std::cos(theta),
-                                 std::sin(theta) * std::sin(phi)} *
-                            rad);
+      m.positions.push_back(
+          Vec3{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)} *
+          rad);
     }
   }
   for (int r = 0; r + 1 < rings; ++r) {
     for (int s = 0; s < segments; ++s) {
-      const uint32_t a = uint32_t(r * segments + s), b = uint32_t(r * segments + (s + 1) % segments);
+      const uint32_t a = uint32_t(r * segments + s),
+                     b = uint32_t(r * segments + (s + 1) % segments);
       const uint32_t c = a + uint32_t(segments), d = b + uint32_t(segments);
       m.triangles.push_back({a, c, b});
       m.triangles.push_back({b, c, d});
@@ -188,8 +189,8 @@ uint64_t trace(RTCScene scene, const std::vector<RayRec>& rays, int threads) {
                         for (size_t i = range.begin(); i < range.end(); ++i) {
                           const RayRec& rec = rays[i];
                           RTCRayHit rh{};
-                          rh.ray = {rec.o.x,  rec.o.y,  rec.o.z, 0.f, rec.d.x, rec.d.y,
-                                    rec.d.z,  rec.time, INFINITY, 0xFFFFFFFFu, 0, 0};
+                          rh.ray = {rec.o.x, rec.o.y,  rec.o.z,  0.f,         rec.d.x, rec.d.y,
+                                    rec.d.z, rec.time, INFINITY, 0xFFFFFFFFu, 0,       0};
                           rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                           rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
                           rtcIntersect1(scene, &ctx, &rh);

@@ -22,7 +22,7 @@ struct AccelQuad {
   struct Step {
     Vec3 corner, edge1, edge2;
   };
-  std::vector<Step> steps;  // motion blur; empty = still
+  std::vector<Step> steps = {};  // motion blur; empty = still
 };
 struct AccelSphere {
   Vec3 center;
@@ -32,14 +32,14 @@ struct AccelSphere {
     Vec3 center;
     float radius = 1;
   };
-  std::vector<Step> steps;  // motion blur; empty = still
+  std::vector<Step> steps = {};  // motion blur; empty = still
 };
 struct AccelMesh {
   std::vector<Vec3> positions;
   std::vector<std::array<uint32_t, 3>> triangles;
   uint32_t material = 0;
   // Motion blur: the positions at each step (same count and order); empty = still.
-  std::vector<std::vector<Vec3>> steps;
+  std::vector<std::vector<Vec3>> steps = {};
 };
 
 struct AccelGeometry {

@@ -33,8 +33,8 @@ struct DirectSample {
 // its diffuse part, scattering pdf}; `delta_weight(light)` is the MIS weight
 // of this strategy for delta lights (1 unless equiangular sampling competes).
 template <bool kMedia, typename Eval, typename DeltaWeight = NoDeltaWeight>
-DirectSample sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset_normal,
-                           float time, Sampler& sampler, uint32_t& rays, const Eval& eval,
+DirectSample sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset_normal, float time,
+                           Sampler& sampler, uint32_t& rays, const Eval& eval,
                            const DeltaWeight& delta_weight = {}) {
   DirectSample out;
   float pmf = 0.f, u_rest = 0.f;

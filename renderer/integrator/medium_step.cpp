@@ -52,10 +52,11 @@ void add_direct_light(PathContext& ctx, const Ray& ray, const std::vector<Majora
     auto delta_weight = [&](size_t li) {
       return power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t));
     };
-    ds = sample_direct<true>(scene, p, Vec3(0.f), ray.time, ctx.sampler, ctx.result.rays, eval_phase,
-                             delta_weight);
+    ds = sample_direct<true>(scene, p, Vec3(0.f), ray.time, ctx.sampler, ctx.result.rays,
+                             eval_phase, delta_weight);
   } else {
-    ds = sample_direct<true>(scene, p, Vec3(0.f), ray.time, ctx.sampler, ctx.result.rays, eval_phase);
+    ds = sample_direct<true>(scene, p, Vec3(0.f), ray.time, ctx.sampler, ctx.result.rays,
+                             eval_phase);
   }
   if (!ds.value.is_black()) ctx.add(throughput * ds.value, depth + 1, scene.light_group[ds.light]);
 }

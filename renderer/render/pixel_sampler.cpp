@@ -43,9 +43,9 @@ bool sample_values(const PathResult& r, const PathRecord& record, const ChannelL
 Ray camera_ray(const Scene& scene, const Sampler& sampler, float fx, float fy, Vec2 u_lens) {
   if (!scene.motion_blur) return scene.camera.generate_ray(fx, fy, u_lens);
   const float time = sampler.shutter_time();
-  Ray ray = scene.camera_steps.empty() ? scene.camera.generate_ray(fx, fy, u_lens)
-                                       : camera_at(scene.camera_steps, time).generate_ray(
-                                             fx, fy, u_lens);
+  Ray ray = scene.camera_steps.empty()
+                ? scene.camera.generate_ray(fx, fy, u_lens)
+                : camera_at(scene.camera_steps, time).generate_ray(fx, fy, u_lens);
   ray.time = time;
   return ray;
 }

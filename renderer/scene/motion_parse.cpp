@@ -73,7 +73,8 @@ MovingParts moving_parts(const nlohmann::json& keyed) {
 
 // A step must be the same shape as at the frame: same type, a mesh with the
 // same vertices and triangles (only positions move).
-void check_same_shape(const JsonReader& node, const ShapeGeometry& frame, const ShapeGeometry& step) {
+void check_same_shape(const JsonReader& node, const ShapeGeometry& frame,
+                      const ShapeGeometry& step) {
   if (frame.index() != step.index()) node.fail("expected the same shape type at every time");
   const auto* a = std::get_if<MeshShapeDesc>(&frame);
   const auto* b = std::get_if<MeshShapeDesc>(&step);
@@ -118,7 +119,8 @@ void parse_motion(const nlohmann::json& keyed, double frame, SceneParseContext& 
   // Step shapes reload their mesh files: the hash counts each file once.
   const std::vector<std::filesystem::path> files = ctx.referenced_files;
   nlohmann::json motion = nlohmann::json::array();
-  std::vector<std::vector<ShapeDesc>> shapes(times.size(), std::vector<ShapeDesc>(parts.shapes.size()));
+  std::vector<std::vector<ShapeDesc>> shapes(times.size(),
+                                             std::vector<ShapeDesc>(parts.shapes.size()));
   for (size_t k = 0; k < times.size(); ++k) {
     const nlohmann::json step_doc = evaluate_keyframes(parts.doc, times[k], ctx.file);
     parse_step(step_doc, parts, ctx, scene, shapes[k]);
@@ -131,7 +133,8 @@ void parse_motion(const nlohmann::json& keyed, double frame, SceneParseContext& 
   }
   if (steps == 1) {
     if (parts.camera) scene.camera = scene.camera_steps.front();
-    for (size_t i : parts.shapes) scene.shapes[i].geometry = std::move(scene.shapes[i].steps.front());
+    for (size_t i : parts.shapes)
+      scene.shapes[i].geometry = std::move(scene.shapes[i].steps.front());
     for (size_t i : parts.shapes) scene.shapes[i].steps.clear();
     scene.camera_steps.clear();
   } else {

@@ -25,7 +25,7 @@ struct Scene {
   // draws a time in the shutter (Sampler::shutter_time), its path lives at
   // that instant. False: no time is drawn and the BVH is static.
   bool motion_blur = false;
-  size_t motion_steps = 0;  // SceneDescription::motion_times.size()
+  size_t motion_steps = 0;           // SceneDescription::motion_times.size()
   std::vector<Camera> camera_steps;  // a moving camera's K >= 2 steps; empty = `camera`
   FilmDesc film;
   RenderDesc render;

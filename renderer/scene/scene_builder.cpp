@@ -96,7 +96,8 @@ void add_steps(const std::vector<ShapeGeometry>& steps, const RenderSpace& space
 }
 template <typename T>
 void add_steps(const std::vector<ShapeGeometry>& steps, const RenderSpace& space, AccelMesh& out) {
-  for (const ShapeGeometry& g : steps) out.steps.push_back(render_positions(std::get<T>(g).positions, space));
+  for (const ShapeGeometry& g : steps)
+    out.steps.push_back(render_positions(std::get<T>(g).positions, space));
 }
 
 void add_shapes(const SceneDescription& desc, const RenderSpace& space, SceneSurfaces& geometry) {
@@ -105,8 +106,12 @@ void add_shapes(const SceneDescription& desc, const RenderSpace& space, SceneSur
         [&](const auto& g) {
           using T = std::decay_t<decltype(g)>;
           if constexpr (std::is_same_v<T, QuadShapeDesc>) {
-            geometry.quads.push_back({space.point(g.corner), space.vector(g.edge1),
-                                      space.vector(g.edge2), s.material, -1, {}});
+            geometry.quads.push_back({space.point(g.corner),
+                                      space.vector(g.edge1),
+                                      space.vector(g.edge2),
+                                      s.material,
+                                      -1,
+                                      {}});
             add_steps<T>(s.steps, space, geometry.quads.back());
           } else if constexpr (std::is_same_v<T, SphereShapeDesc>) {
             geometry.spheres.push_back(

@@ -116,7 +116,7 @@ struct ShapeDesc {
   uint32_t material = 0;   // index into SceneDescription::materials
   // Motion blur: the geometry at SceneDescription::motion_times (same type;
   // a mesh keeps its triangles); empty = still over the shutter.
-  std::vector<ShapeGeometry> steps;
+  std::vector<ShapeGeometry> steps = {};
 };
 
 struct QuadLightDesc {
@@ -217,7 +217,7 @@ struct LayerDesc {
 
 struct SceneDescription {
   std::filesystem::path file;  // the scene file, for messages
-  CameraDesc camera;  // at the frame (the render space is centred on it)
+  CameraDesc camera;           // at the frame (the render space is centred on it)
   // Motion blur (render.shutter, scene/motion_parse.cpp): the K >= 2 times,
   // in frames, spread uniformly over [frame + open, frame + close] that
   // moving cameras and shapes are sampled at; empty when nothing moves.
