@@ -98,7 +98,11 @@ std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
   rtcIntersect1(impl_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 
-  const GeomRecord rec = impl_->records[rh.hit.geomID];
+  // A moving primitive may be an instance (core/rigid_motion.h): its record
+  // is at the instance's id, and primID is the instanced primitive's.
+  const unsigned id =
+      rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? rh.hit.instID[0] : rh.hit.geomID;
+  const GeomRecord rec = impl_->records[id];
   SurfaceHit hit;
   hit.t = rh.ray.tfar;
   const float u = rh.hit.u, v = rh.hit.v;

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <string>
 
+#include "renderer/core/rigid_motion.h"
 #include "renderer/render/render.h"
 #include "renderer/scene/scene_loader.h"
 #include "tests/renderer/render_stats.h"
@@ -123,6 +124,8 @@ json moving_black_quad(const json& shutter) {
   return doc;
 }
 
+json moving_room();
+
 Scene load(const json& doc, double frame = 1) {
   return build_scene(parse_scene(doc, "motion.json", SceneLoadOptions{.frame = frame}));
 }
@@ -139,6 +142,48 @@ TEST(MotionBlur, AMovingEdgeIsTheTimeAverageOfItsCoverage) {
       },
       log);
   EXPECT_EQ(rejected, 0) << log;
+}
+
+// The same edge from a deforming mesh: its quad moves as above while a
+// triangle of the same mesh, behind the camera, is stretched another way.
+// Not an affine motion: the mesh keeps vertex time steps, not an instance.
+TEST(MotionBlur, ADeformingMeshBlursLikeTheMovingQuad) {
+  json doc = moving_black_quad({0, 0.5});
+  const auto positions_at = [](double e, double y) {
+    return json{e, -10, 0, e + 20, -10, 0, e + 20, 10, 0, e, 10, 0, 0, 0, 50, 1, 0, 50, 0, y, 50};
+  };
+  doc["shapes"][0] = {{"type", "mesh"},
+                      {"material", "black"},
+                      {"indices", {0, 1, 2, 0, 2, 3, 4, 5, 6}},
+                      {"positions", {{"keys", {{1, positions_at(-3, 1)}, {2, positions_at(3, 2)}}}}}};
+  const Scene scene = load(doc);
+  ASSERT_EQ(scene.accel->geometry().meshes.size(), 1u);
+  EXPECT_FALSE(rigid_motion(scene.accel->geometry().meshes[0]));
+  std::string log;
+  const int rejected = rejected_pixels(
+      scene, 1.0,
+      [](int i) {
+        const auto [x0, x1] = pixel_span(i, 16, 4.0);
+        return mean_left_fraction(x0, x1, -3.0, 0.0);
+      },
+      log);
+  EXPECT_EQ(rejected, 0) << log;
+}
+
+TEST(MotionBlur, KeyedCornersCentresAndTransformsMoveByInstance) {
+  json doc = moving_room();
+  doc["shapes"].push_back(json::parse(R"({"type": "mesh", "material": "white",
+      "positions": [0, 0, 0, 0.2, 0, 0, 0, 0.2, 0, 0, 0, 0.2], "indices": [0, 1, 2, 0, 1, 3, 0, 2, 3],
+      "transform": {"translate": {"keys": [[1, [0, 0.5, 0]], [2, [0.2, 0.6, 0]]]},
+                    "rotate": {"axis": [0, 1, 0], "angle": {"keys": [[1, 0], [2, 90]]}}}})"));
+  const Scene scene = load(doc);
+  const AccelGeometry& g = scene.accel->geometry();
+  ASSERT_EQ(g.spheres.size(), 1u);
+  EXPECT_TRUE(rigid_motion(g.spheres[0]));
+  ASSERT_EQ(g.meshes.size(), 1u);
+  EXPECT_EQ(g.meshes[0].steps.size(), 9u);  // a rotation: the cap
+  EXPECT_TRUE(rigid_motion(g.meshes[0]));
+  EXPECT_FALSE(rigid_motion(g.quads[0]));  // still
 }
 
 TEST(MotionBlur, TheEdgeTestRejectsAWrongTime) {
