@@ -1,15 +1,19 @@
 // Motion blur in Embree, two ways, measured side by side in one run
 // (bench/README.md, "vesper_motion_bench"):
 //   vertex    one triangle geometry with 2 time steps (a vertex buffer per
-//             step, rtcSetGeometryTimeStepCount): what the renderer builds
+//             step, rtcSetGeometryTimeStepCount)
 //   instance  the mesh's static BVH in its own scene, instanced once with 2
-//             motion transforms (a per-sample transform, interpolated by Embree)
+//             motion transforms (a per-sample transform, interpolated by
+//             Embree): what the renderer builds for affine motion
+//             (core/rigid_motion.h); deforming meshes keep vertex steps
 //   static    the same mesh not moving: the cost without motion blur
 // The scene: a displaced UV sphere (2 * segments * (rings - 1) triangles)
 // moving by half its radius over the shutter, inside a closed box of 6 quads.
 // Rays: from a camera point toward uniform points of the swept region, each
 // with a uniform time in [0, 1). Timed: rtcIntersect1 over the ray set on all
-// threads, and the BVH build (a motion-blurred frame builds it once).
+// threads, and the BVH build (a motion-blurred frame builds it once); then
+// the two motion variants alternately, for a ratio that load changes on a
+// shared machine do not bias.
 //
 // Quick mode for CI smoke runs: --quick (a 32k-triangle mesh, 64k rays).
 #include <benchmark/benchmark.h>
@@ -244,6 +248,29 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : v[v.size() / 2];
 }
 
+// The machine is shared: load changes between the Google Benchmark runs of
+// one variant and the next bias their ratio. Here the two variants alternate,
+// one trace each per round, and the ratio is taken per round.
+std::vector<double> paired_ratios(int rounds) {
+  RTCScene inner_v = nullptr, inner_i = nullptr;
+  RTCScene vertex = build(g_shared->device, g_shared->mesh, "vertex", inner_v);
+  RTCScene instance = build(g_shared->device, g_shared->mesh, "instance", inner_i);
+  auto seconds = [](RTCScene scene) {
+    const auto start = std::chrono::steady_clock::now();
+    trace(scene, g_shared->rays, g_settings.threads);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  std::vector<double> ratios;  // instance rate / vertex rate
+  for (int r = 0; r < rounds; ++r) {
+    const double tv = seconds(vertex), ti = seconds(instance);
+    ratios.push_back(tv / ti);
+  }
+  rtcReleaseScene(vertex);
+  rtcReleaseScene(instance);
+  rtcReleaseScene(inner_i);
+  return ratios;
+}
+
 // Medians over every timed run, and the ratios the renderer's choice rests on.
 void print_summary(const Shared& s) {
   std::printf("\nmotion blur summary (medians)\n");
@@ -254,6 +281,11 @@ void print_summary(const Shared& s) {
   const double vertex = median(s.rate.at("vertex")), instance = median(s.rate.at("instance"));
   std::printf("  trace rate instance / vertex: %.3f\n", instance / vertex);
   std::printf("  trace rate vertex / static:   %.3f\n", vertex / median(s.rate.at("static")));
+  const std::vector<double> paired = paired_ratios(9);
+  std::printf(
+      "  trace rate instance / vertex, alternating (9 rounds): median %.3f, min %.3f, max %.3f\n",
+      median(paired), *std::min_element(paired.begin(), paired.end()),
+      *std::max_element(paired.begin(), paired.end()));
   std::printf("  build time instance / vertex: %.3f\n",
               median(s.build.at("instance")) / median(s.build.at("vertex")));
 }

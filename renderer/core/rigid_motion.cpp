@@ -82,8 +82,8 @@ bool maps_all(const MotionTransform& m, const std::vector<Vec3>& from,
     const Vec3d p = d(from[i]), q = d(to[i]);
     double err = 0, scale = 0;
     for (int r = 0; r < 3; ++r) {
-      const double v = m[size_t(r)] * p.x + m[size_t(3 + r)] * p.y + m[size_t(6 + r)] * p.z +
-                       m[size_t(9 + r)];
+      const double v =
+          m[size_t(r)] * p.x + m[size_t(3 + r)] * p.y + m[size_t(6 + r)] * p.z + m[size_t(9 + r)];
       err = std::max(err, std::abs(v - q[r]));
       scale = std::max({scale, std::abs(q[r]), std::abs(p[r])});
     }

@@ -152,10 +152,11 @@ TEST(MotionBlur, ADeformingMeshBlursLikeTheMovingQuad) {
   const auto positions_at = [](double e, double y) {
     return json{e, -10, 0, e + 20, -10, 0, e + 20, 10, 0, e, 10, 0, 0, 0, 50, 1, 0, 50, 0, y, 50};
   };
-  doc["shapes"][0] = {{"type", "mesh"},
-                      {"material", "black"},
-                      {"indices", {0, 1, 2, 0, 2, 3, 4, 5, 6}},
-                      {"positions", {{"keys", {{1, positions_at(-3, 1)}, {2, positions_at(3, 2)}}}}}};
+  doc["shapes"][0] = {
+      {"type", "mesh"},
+      {"material", "black"},
+      {"indices", {0, 1, 2, 0, 2, 3, 4, 5, 6}},
+      {"positions", {{"keys", {{1, positions_at(-3, 1)}, {2, positions_at(3, 2)}}}}}};
   const Scene scene = load(doc);
   ASSERT_EQ(scene.accel->geometry().meshes.size(), 1u);
   EXPECT_FALSE(rigid_motion(scene.accel->geometry().meshes[0]));
