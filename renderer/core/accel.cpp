@@ -4,6 +4,7 @@
 #include <xmmintrin.h>
 
 #include "renderer/core/embree_scene.h"
+#include "renderer/core/motion_steps.h"
 
 namespace vesper {
 
@@ -27,6 +28,28 @@ std::vector<GeomRecord> records_of(const AccelGeometry& g) {
   for (uint32_t i = 0; i < g.spheres.size(); ++i) records.push_back({GeomKind::Sphere, i});
   for (uint32_t i = 0; i < g.meshes.size(); ++i) records.push_back({GeomKind::Mesh, i});
   return records;
+}
+
+// A moving primitive's shape at `time`, interpolated as Embree does.
+AccelQuad::Step quad_at(const AccelQuad& q, float time) {
+  if (q.steps.empty()) return {q.corner, q.edge1, q.edge2};
+  const auto [k, f] = step_position(q.steps.size(), time);
+  const AccelQuad::Step &a = q.steps[k], &b = q.steps[k + 1];
+  return {lerp_steps(a.corner, b.corner, f), lerp_steps(a.edge1, b.edge1, f),
+          lerp_steps(a.edge2, b.edge2, f)};
+}
+
+AccelSphere::Step sphere_at(const AccelSphere& s, float time) {
+  if (s.steps.empty()) return {s.center, s.radius};
+  const auto [k, f] = step_position(s.steps.size(), time);
+  const AccelSphere::Step &a = s.steps[k], &b = s.steps[k + 1];
+  return {lerp_steps(a.center, b.center, f), lerp_steps(a.radius, b.radius, f)};
+}
+
+Vec3 vertex_at(const AccelMesh& m, uint32_t i, float time) {
+  if (m.steps.empty()) return m.positions[i];
+  const auto [k, f] = step_position(m.steps.size(), time);
+  return lerp_steps(m.steps[k][i], m.steps[k + 1][i], f);
 }
 
 }  // namespace
@@ -69,39 +92,46 @@ std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
   rh.ray.tfar = ray.tmax;
   rh.ray.mask = 0xFFFFFFFFu;
   rh.ray.flags = 0;
-  rh.ray.time = 0.f;
+  rh.ray.time = ray.time;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 
-  const GeomRecord rec = impl_->records[rh.hit.geomID];
+  // A moving primitive may be an instance (core/rigid_motion.h): its record
+  // is at the instance's id, and primID is the instanced primitive's.
+  const unsigned id =
+      rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? rh.hit.instID[0] : rh.hit.geomID;
+  const GeomRecord rec = impl_->records[id];
   SurfaceHit hit;
   hit.t = rh.ray.tfar;
   const float u = rh.hit.u, v = rh.hit.v;
   switch (rec.kind) {
     case GeomKind::Quad: {
       const AccelQuad& q = impl_->geometry.quads[rec.index];
-      hit.p = q.corner + q.edge1 * u + q.edge2 * v;
-      hit.n = normalize(cross(q.edge1, q.edge2));
+      const AccelQuad::Step s = quad_at(q, ray.time);
+      hit.p = s.corner + s.edge1 * u + s.edge2 * v;
+      hit.n = normalize(cross(s.edge1, s.edge2));
       hit.material = q.material;
       hit.light = q.light;
       hit.shape = q.shape;
       break;
     }
     case GeomKind::Sphere: {
-      const AccelSphere& s = impl_->geometry.spheres[rec.index];
+      const AccelSphere& sphere = impl_->geometry.spheres[rec.index];
+      const AccelSphere::Step s = sphere_at(sphere, ray.time);
       const Vec3 d = ray.origin + ray.dir * hit.t - s.center;
       hit.n = normalize(d);
       hit.p = s.center + hit.n * s.radius;  // re-project onto the surface (pbrt)
-      hit.material = s.material;
-      hit.shape = s.shape;
+      hit.material = sphere.material;
+      hit.shape = sphere.shape;
       break;
     }
     case GeomKind::Mesh: {
       const AccelMesh& m = impl_->geometry.meshes[rec.index];
       const auto& tri = m.triangles[rh.hit.primID];
-      const Vec3 &p0 = m.positions[tri[0]], &p1 = m.positions[tri[1]], &p2 = m.positions[tri[2]];
+      const Vec3 p0 = vertex_at(m, tri[0], ray.time), p1 = vertex_at(m, tri[1], ray.time),
+                 p2 = vertex_at(m, tri[2], ray.time);
       hit.p = p0 + (p1 - p0) * u + (p2 - p0) * v;
       hit.n = normalize(cross(p1 - p0, p2 - p0));
       hit.material = m.material;
@@ -113,7 +143,7 @@ std::optional<SurfaceHit> Accel::intersect(const Ray& ray) const {
   return hit;
 }
 
-bool Accel::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
+bool Accel::occluded(const Vec3& origin, const Vec3& dir, float tmax, float time) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRay r;
@@ -127,7 +157,7 @@ bool Accel::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
   r.tfar = tmax;
   r.mask = 0xFFFFFFFFu;
   r.flags = 0;
-  r.time = 0.f;
+  r.time = time;
   rtcOccluded1(impl_->scene, &ctx, &r);
   return r.tfar < 0.f;  // Embree sets tfar = -inf on a hit
 }

@@ -28,9 +28,10 @@ class Accel {
   Accel(const Accel&) = delete;
   Accel& operator=(const Accel&) = delete;
 
+  // Moving primitives are met where they are at ray.time.
   std::optional<SurfaceHit> intersect(const Ray& ray) const;
-  // True when anything blocks the segment origin + t*dir, t in (0, tmax).
-  bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
+  // True when anything blocks the segment origin + t*dir, t in (0, tmax), at `time`.
+  bool occluded(const Vec3& origin, const Vec3& dir, float tmax, float time = 0.f) const;
   // Number of triangles/quads/spheres in the BVH.
   size_t primitive_count() const;
   // The geometry in the BVH (degenerate primitives dropped), in render space:

@@ -1,6 +1,12 @@
 #pragma once
 // The surfaces handed to the accelerator, already in render space: quads
 // (walls and quad emitters), spheres and triangle meshes.
+//
+// Motion blur: a primitive that moves over the shutter also holds its shape
+// at K >= 2 time steps spread uniformly over the shutter (step k at shutter
+// time k / (K - 1)); Embree interpolates its vertices linearly between steps
+// at the ray's time (core/motion_steps.h does the same for the hit point).
+// Empty steps = a still primitive, built exactly as without motion blur.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -14,18 +20,29 @@ struct AccelQuad {
   uint32_t material = 0;
   int32_t light = -1;  // index into Scene::lights when the quad is an emitter
   int32_t shape = -1;  // index into the scene's shapes; -1 for emitters
+  struct Step {
+    Vec3 corner, edge1, edge2;
+  };
+  std::vector<Step> steps = {};  // motion blur; empty = still
 };
 struct AccelSphere {
   Vec3 center;
   float radius = 1;
   uint32_t material = 0;
   int32_t shape = -1;  // index into the scene's shapes
+  struct Step {
+    Vec3 center;
+    float radius = 1;
+  };
+  std::vector<Step> steps = {};  // motion blur; empty = still
 };
 struct AccelMesh {
   std::vector<Vec3> positions;
   std::vector<std::array<uint32_t, 3>> triangles;
   uint32_t material = 0;
   int32_t shape = -1;  // index into the scene's shapes
+  // Motion blur: the positions at each step (same count and order); empty = still.
+  std::vector<std::vector<Vec3>> steps = {};
 };
 
 struct AccelGeometry {
@@ -33,6 +50,16 @@ struct AccelGeometry {
   std::vector<AccelSphere> spheres;
   std::vector<AccelMesh> meshes;
 
+  // Whether any primitive moves over the shutter.
+  bool moving() const {
+    for (const AccelQuad& q : quads)
+      if (!q.steps.empty()) return true;
+    for (const AccelSphere& s : spheres)
+      if (!s.steps.empty()) return true;
+    for (const AccelMesh& m : meshes)
+      if (!m.steps.empty()) return true;
+    return false;
+  }
   // Quads + spheres + triangles.
   size_t primitive_count() const {
     size_t n = quads.size() + spheres.size();

@@ -1,5 +1,6 @@
 #include "renderer/core/camera.h"
 
+#include "renderer/core/motion_steps.h"
 #include "renderer/sampling/warp.h"
 
 namespace vesper {
@@ -19,6 +20,21 @@ Ray Camera::generate_ray(float fx, float fy, Vec2 u_lens) const {
   ray.origin = position + right * origin_cam.x + up * origin_cam.y;
   ray.dir = normalize(right * dir_cam.x + up * dir_cam.y + forward * dir_cam.z);
   return ray;
+}
+
+Camera camera_at(const std::vector<Camera>& steps, float time) {
+  const auto [k, f] = step_position(steps.size(), time);
+  const Camera &a = steps[k], &b = steps[k + 1];
+  Camera c = a;
+  c.position = lerp_steps(a.position, b.position, f);
+  c.forward = normalize(lerp_steps(a.forward, b.forward, f));
+  c.right = normalize(cross(c.forward, lerp_steps(a.up, b.up, f)));
+  c.up = cross(c.right, c.forward);
+  c.tan_half_x = lerp_steps(a.tan_half_x, b.tan_half_x, f);
+  c.tan_half_y = lerp_steps(a.tan_half_y, b.tan_half_y, f);
+  c.lens_radius = lerp_steps(a.lens_radius, b.lens_radius, f);
+  c.focus_distance = lerp_steps(a.focus_distance, b.focus_distance, f);
+  return c;
 }
 
 }  // namespace vesper

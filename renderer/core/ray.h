@@ -9,6 +9,10 @@ struct Ray {
   Vec3 origin;
   Vec3 dir;  // unit length
   float tmax = std::numeric_limits<float>::infinity();
+  // The instant the ray lives at, as a fraction of the shutter in [0, 1]
+  // (motion blur: Embree's ray time). A path keeps its camera ray's time for
+  // every bounce and shadow ray; 0 in a still scene, where nothing reads it.
+  float time = 0;
 };
 
 // Moves p off the surface along the geometric normal n (facing the side the

@@ -9,14 +9,13 @@
 namespace vesper {
 
 // Fraction of light arriving along the shadow ray: 0 when a surface blocks
-// it, the media's transmittance otherwise.
+// it, the media's transmittance otherwise. The shadow ray (origin, dir, up
+// to tmax) lives at the path's time.
 template <bool kMedia>
-Rgb shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& dir, float tmax,
-                         Sampler& sampler, uint32_t& rays) {
+Rgb shadow_transmittance(const Scene& scene, const Ray& shadow, Sampler& sampler, uint32_t& rays) {
   ++rays;
-  if (scene.accel->occluded(origin, dir, tmax)) return Rgb{};
-  if constexpr (kMedia)
-    return estimate_transmittance(scene.media, Ray{origin, dir, tmax}, tmax, sampler);
+  if (scene.accel->occluded(shadow.origin, shadow.dir, shadow.tmax, shadow.time)) return Rgb{};
+  if constexpr (kMedia) return estimate_transmittance(scene.media, shadow, shadow.tmax, sampler);
   return Rgb(1.f);
 }
 
@@ -30,11 +29,11 @@ struct DirectSample {
   size_t light = 0;
 };
 
-// One light sample for the point p. `eval(wi)` returns {f * |cos| (or phase),
+// One light sample for the point p, at the path's `time`. `eval(wi)` returns {f * |cos| (or phase),
 // its diffuse part, scattering pdf}; `delta_weight(light)` is the MIS weight
 // of this strategy for delta lights (1 unless equiangular sampling competes).
 template <bool kMedia, typename Eval, typename DeltaWeight = NoDeltaWeight>
-DirectSample sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset_normal,
+DirectSample sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset_normal, float time,
                            Sampler& sampler, uint32_t& rays, const Eval& eval,
                            const DeltaWeight& delta_weight = {}) {
   DirectSample out;
@@ -62,7 +61,7 @@ DirectSample sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset
     dir = to_light / dist;
     tmax = dist * (1.f - 1e-4f);
   }
-  const Rgb tr = shadow_transmittance<kMedia>(scene, origin, dir, tmax, sampler, rays);
+  const Rgb tr = shadow_transmittance<kMedia>(scene, Ray{origin, dir, tmax, time}, sampler, rays);
   if (tr.is_black()) return out;
   const float light_pdf = pmf * ls->pdf;
   const float w = ls->is_delta ? delta_weight(li) : power_heuristic(light_pdf, scatter_pdf);

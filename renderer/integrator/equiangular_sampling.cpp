@@ -51,8 +51,8 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   if (!(pdf_e > 0.f) || c.sigma_s.is_black() || !ls || ls->radiance.is_black()) return out;
   const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y)};
   const float f = phase.eval(-ray.dir, ls->wi);
-  const Rgb tr_light =
-      shadow_transmittance<true>(scene, x, ls->wi, ls->distance * (1.f - 1e-4f), sampler, rays);
+  const Rgb tr_light = shadow_transmittance<true>(
+      scene, Ray{x, ls->wi, ls->distance * (1.f - 1e-4f), ray.time}, sampler, rays);
   if (tr_light.is_black()) return out;
   const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
   const float w = power_heuristic(pdf_e, pdf_a);

@@ -46,10 +46,10 @@ void record_first_hit(PathContext& ctx, const SurfaceHit& hit, const Ray& ray) {
 // Next-event estimation at a surface vertex.
 template <bool kMedia>
 void add_direct_light(PathContext& ctx, const SurfaceHit& hit, const Bsdf& bsdf, const Frame& frame,
-                      const Vec3& wo, int depth, const Rgb& throughput) {
+                      const Vec3& wo, int depth, const Rgb& throughput, float time) {
   const bool want_diffuse = ctx.options.record != nullptr;
   const DirectSample ds = sample_direct<kMedia>(
-      ctx.scene, hit.p, hit.n, ctx.sampler, ctx.result.rays, [&](const Vec3& wi_world) {
+      ctx.scene, hit.p, hit.n, time, ctx.sampler, ctx.result.rays, [&](const Vec3& wi_world) {
         const Vec3 wi = frame.to_local(wi_world);
         const float cos = std::abs(wi.z);
         return std::tuple{bsdf_eval(bsdf, wo, wi) * cos,
@@ -77,7 +77,7 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   if (depth == 0 && ctx.options.want_aovs) ctx.result.albedo = bsdf_albedo(bsdf);
 
   if (ctx.have_lights() && !bsdf_is_delta(bsdf)) {
-    add_direct_light<kMedia>(ctx, hit, bsdf, frame, wo, depth, path.throughput);
+    add_direct_light<kMedia>(ctx, hit, bsdf, frame, wo, depth, path.throughput, path.ray.time);
   } else {
     // Keep the sample dimensions aligned whether or not NEE ran.
     ctx.sampler.next1();
@@ -97,7 +97,7 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
 
   const Vec3 wi_world = normalize(frame.to_world(bs->wi));
   const Vec3 n_off = dot(wi_world, hit.n) >= 0.f ? hit.n : -hit.n;
-  path.ray = Ray{offset_ray_origin(hit.p, n_off), wi_world};
+  path.ray = Ray{offset_ray_origin(hit.p, n_off), wi_world, kInfinity, path.ray.time};
   return true;
 }
 

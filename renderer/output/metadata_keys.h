@@ -39,6 +39,11 @@ inline constexpr std::array<const char*, 4> kPerRangeFigures{kNoiseReached, kSpp
 
 // render.clamp / --clamp (biased): the indirect sample clamp, when set.
 inline constexpr char kClamp[] = "vesper:clamp";
+// render.shutter (motion blur), when set: "open close" in frames relative to
+// the frame; and the motion steps the camera and shapes were sampled at
+// (absent when nothing moves over the shutter).
+inline constexpr char kShutter[] = "vesper:shutter";
+inline constexpr char kMotionSteps[] = "vesper:motion_steps";
 // render_frame(): the number of render passes (beauty + variant layers).
 inline constexpr char kPasses[] = "vesper:passes";
 // `vesper render --frame N`.

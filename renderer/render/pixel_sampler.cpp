@@ -38,6 +38,18 @@ bool sample_values(const PathResult& r, const PathRecord& record, const ChannelL
   return finite;
 }
 
+// The camera ray through raster point (fx, fy); with motion blur at the
+// sample's own time in the shutter, from the camera at that time.
+Ray camera_ray(const Scene& scene, const Sampler& sampler, float fx, float fy, Vec2 u_lens) {
+  if (!scene.motion_blur) return scene.camera.generate_ray(fx, fy, u_lens);
+  const float time = sampler.shutter_time();
+  Ray ray = scene.camera_steps.empty()
+                ? scene.camera.generate_ray(fx, fy, u_lens)
+                : camera_at(scene.camera_steps, time).generate_ray(fx, fy, u_lens);
+  ray.time = time;
+  return ray;
+}
+
 }  // namespace
 
 SampleCounts sample_pixel(const PixelSamplerContext& c, int x, int y, int64_t first, int64_t last,
@@ -51,8 +63,8 @@ SampleCounts sample_pixel(const PixelSamplerContext& c, int x, int y, int64_t fi
     Sampler sampler(c.seed, pixel_index, s);
     const Vec2 offset = sample_pixel_filter(c.scene.film.filter, sampler.next2());
     const Vec2 u_lens = sampler.next2();
-    const Ray ray =
-        c.scene.camera.generate_ray(float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y, u_lens);
+    const Ray ray = camera_ray(c.scene, sampler, float(x) + 0.5f + offset.x,
+                               float(y) + 0.5f + offset.y, u_lens);
     const PathResult r = trace_path(c.scene, ray, sampler, pt);
     counts.rays += r.rays;
     if (c.crypto) c.crypto->add(pixel_index, r.first_shape);

@@ -216,6 +216,14 @@ void set_sampling_metadata(std::map<std::string, std::string>& meta, const Sampl
   set_noise_metadata(meta, film);
 }
 
+// The shutter (and motion steps) the image was exposed over.
+void set_shutter_metadata(std::map<std::string, std::string>& meta, const Scene& scene) {
+  if (!scene.render.shutter) return;
+  meta[metadata_key::kShutter] =
+      fmt::format("{} {}", scene.render.shutter->open, scene.render.shutter->close);
+  if (scene.motion_blur) meta[metadata_key::kMotionSteps] = std::to_string(scene.motion_steps);
+}
+
 }  // namespace
 
 const char* stop_reason_name(StopReason r) {
@@ -294,6 +302,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   set_sampling_metadata(img.metadata, plan, out.stats, out.film);
   if (pt.indirect_clamp > 0.f)  // biased: the image says so
     img.metadata[metadata_key::kClamp] = fmt::format("{}", pt.indirect_clamp);
+  set_shutter_metadata(img.metadata, scene);
   if (!options.keep_sums) out.film = FilmSums();
   return out;
 }

@@ -57,6 +57,15 @@ class Sampler {
     return {fraction_to_float(x ^ shift),
             fraction_to_float(sobol1_from_sobol0(x) ^ (shift << 16 | shift >> 16))};
   }
+  // The instant in the shutter, [0, 1), a camera sample lives at (motion
+  // blur). A dimension of its own outside the slot sequence: drawing it or
+  // not shifts no other dimension, so a still scene's samples, and a
+  // zero-length shutter's, are bit for bit those without motion blur. Within
+  // a stream it is stratified like a slot (its own shuffle and shift).
+  float shutter_time() const {
+    const uint64_t h = mix64(stream_key_ ^ 0x5348555454455221ULL);  // "SHUTTER!"
+    return fraction_to_float(shuffled_sobol0(index_bits_, uint32_t(h)) ^ uint32_t(h >> 32));
+  }
   // Slots used so far (one per next1 or next2 call).
   uint32_t dimension() const { return slot_; }
 

@@ -16,7 +16,7 @@ RenderLight make(const QuadLightDesc& d, const RenderSpace& space) {
   q.area = length(c);
   q.normal = q.area > 0.f ? c / q.area : Vec3(0, 0, 1);
   q.radiance = d.radiance;
-  return {q, AccelQuad{q.corner, q.edge1, q.edge2, 0, -1, -1}};
+  return {q, AccelQuad{q.corner, q.edge1, q.edge2, 0, -1, -1, {}}};
 }
 
 RenderLight make(const PointLightDesc& d, const RenderSpace& space) {

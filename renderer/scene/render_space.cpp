@@ -58,8 +58,12 @@ void include(Bounds& b, const VdbMediumDesc& v) {
 Bounds scene_bounds(const SceneDescription& d) {
   Bounds b;
   b.add(d.camera.from);
+  for (const auto& c : d.camera_steps) b.add(c.from);  // motion blur
   const auto add = [&](const auto& desc) { include(b, desc); };
-  for (const auto& s : d.shapes) std::visit(add, s.geometry);
+  for (const auto& s : d.shapes) {
+    std::visit(add, s.geometry);
+    for (const auto& step : s.steps) std::visit(add, step);
+  }
   for (const auto& l : d.lights) std::visit(add, l.light);
   for (const auto& m : d.media) std::visit(add, m.medium);
   return b;

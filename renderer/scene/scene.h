@@ -21,6 +21,12 @@ namespace vesper {
 
 struct Scene {
   Camera camera;
+  // Motion blur (render.shutter with something moving): each camera sample
+  // draws a time in the shutter (Sampler::shutter_time), its path lives at
+  // that instant. False: no time is drawn and the BVH is static.
+  bool motion_blur = false;
+  size_t motion_steps = 0;           // SceneDescription::motion_times.size()
+  std::vector<Camera> camera_steps;  // a moving camera's K >= 2 steps; empty = `camera`
   FilmDesc film;
   RenderDesc render;
   std::vector<Bsdf> materials;

@@ -51,12 +51,54 @@ Camera make_camera(const CameraDesc& cd, const FilmDesc& film, const RenderSpace
   return cam;
 }
 
+// A moving camera's steps; each sits where it is in render space (centred on
+// the frame's camera).
+std::vector<Camera> make_camera_steps(const SceneDescription& desc, const RenderSpace& space) {
+  std::vector<Camera> steps;
+  for (const CameraDesc& cd : desc.camera_steps) {
+    steps.push_back(make_camera(cd, desc.film, space));
+    steps.back().position = space.point(cd.from);
+  }
+  return steps;
+}
+
 // Everything the accelerator holds, in render space.
 struct SceneSurfaces {
   std::vector<AccelQuad> quads;
   std::vector<AccelSphere> spheres;
   std::vector<AccelMesh> meshes;
 };
+
+// Render-space positions; one spare element so that Embree's 16-byte
+// vertex loads stay inside the (shared) buffer.
+std::vector<Vec3> render_positions(const std::vector<Vec3d>& world, const RenderSpace& space) {
+  std::vector<Vec3> out;
+  out.reserve(world.size() + 1);
+  for (const auto& p : world) out.push_back(space.point(p));
+  return out;
+}
+
+// Motion blur: the steps of a shape of type T, in render space, into `out`'s steps.
+template <typename T>
+void add_steps(const std::vector<ShapeGeometry>& steps, const RenderSpace& space, AccelQuad& out) {
+  for (const ShapeGeometry& g : steps) {
+    const auto& q = std::get<T>(g);
+    out.steps.push_back({space.point(q.corner), space.vector(q.edge1), space.vector(q.edge2)});
+  }
+}
+template <typename T>
+void add_steps(const std::vector<ShapeGeometry>& steps, const RenderSpace& space,
+               AccelSphere& out) {
+  for (const ShapeGeometry& g : steps) {
+    const auto& s = std::get<T>(g);
+    out.steps.push_back({space.point(s.center), float(s.radius * space.inv_scale)});
+  }
+}
+template <typename T>
+void add_steps(const std::vector<ShapeGeometry>& steps, const RenderSpace& space, AccelMesh& out) {
+  for (const ShapeGeometry& g : steps)
+    out.steps.push_back(render_positions(std::get<T>(g).positions, space));
+}
 
 void add_shapes(const SceneDescription& desc, const RenderSpace& space, SceneSurfaces& geometry) {
   for (size_t i = 0; i < desc.shapes.size(); ++i) {
@@ -66,18 +108,25 @@ void add_shapes(const SceneDescription& desc, const RenderSpace& space, SceneSur
         [&](const auto& g) {
           using T = std::decay_t<decltype(g)>;
           if constexpr (std::is_same_v<T, QuadShapeDesc>) {
-            geometry.quads.push_back({space.point(g.corner), space.vector(g.edge1),
-                                      space.vector(g.edge2), s.material, -1, shape});
+            geometry.quads.push_back({space.point(g.corner),
+                                      space.vector(g.edge1),
+                                      space.vector(g.edge2),
+                                      s.material,
+                                      -1,
+                                      shape,
+                                      {}});
+            add_steps<T>(s.steps, space, geometry.quads.back());
           } else if constexpr (std::is_same_v<T, SphereShapeDesc>) {
-            geometry.spheres.push_back(
-                {space.point(g.center), float(g.radius * space.inv_scale), s.material, shape});
+            geometry.spheres.push_back({space.point(g.center), float(g.radius * space.inv_scale),
+                                        s.material, shape, {}});
+            add_steps<T>(s.steps, space, geometry.spheres.back());
           } else {
             AccelMesh m;
-            m.positions.reserve(g.positions.size());
-            for (const auto& p : g.positions) m.positions.push_back(space.point(p));
+            m.positions = render_positions(g.positions, space);
             m.triangles = g.triangles;
             m.material = s.material;
             m.shape = shape;
+            add_steps<T>(s.steps, space, m);
             geometry.meshes.push_back(std::move(m));
           }
         },
@@ -150,6 +199,9 @@ Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options
   scene.media = build_media(desc, scene.origin, scene.unit_scale, options.media);
   scene.accel = std::make_unique<Accel>(std::move(geometry.quads), std::move(geometry.spheres),
                                         std::move(geometry.meshes));
+  scene.camera_steps = make_camera_steps(desc, space);
+  scene.motion_steps = desc.motion_times.size();
+  scene.motion_blur = !scene.camera_steps.empty() || scene.accel->geometry().moving();
   return scene;
 }
 

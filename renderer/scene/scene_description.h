@@ -70,6 +70,12 @@ struct RenderDesc {
   // render.clamp: the largest RGB component a camera sample's indirect light
   // may have (integrator/path_context.h). Biased; unset = off.
   std::optional<double> clamp;
+  // render.shutter: [open, close] in frames, offsets from the frame rendered
+  // (open <= close). Unset: no motion blur.
+  struct Shutter {
+    double open = 0, close = 0;
+  };
+  std::optional<Shutter> shutter;
 };
 
 struct DiffuseMaterialDesc {
@@ -105,10 +111,14 @@ struct MeshShapeDesc {
   std::vector<std::array<uint32_t, 3>> triangles;  // every index < positions.size()
   std::string source;                              // file path or "inline", for messages
 };
+using ShapeGeometry = std::variant<QuadShapeDesc, SphereShapeDesc, MeshShapeDesc>;
 struct ShapeDesc {
-  std::variant<QuadShapeDesc, SphereShapeDesc, MeshShapeDesc> geometry;
-  uint32_t material = 0;  // index into SceneDescription::materials
-  std::string name;       // unique in the scene; "" = the default (shape_name)
+  ShapeGeometry geometry;  // at the frame
+  uint32_t material = 0;   // index into SceneDescription::materials
+  std::string name;        // unique in the scene; "" = the default (shape_name)
+  // Motion blur: the geometry at SceneDescription::motion_times (same type;
+  // a mesh keeps its triangles); empty = still over the shutter.
+  std::vector<ShapeGeometry> steps = {};
 };
 
 struct QuadLightDesc {
@@ -209,7 +219,12 @@ struct LayerDesc {
 
 struct SceneDescription {
   std::filesystem::path file;  // the scene file, for messages
-  CameraDesc camera;
+  CameraDesc camera;           // at the frame (the render space is centred on it)
+  // Motion blur (render.shutter, scene/motion_parse.cpp): the K >= 2 times,
+  // in frames, spread uniformly over [frame + open, frame + close] that
+  // moving cameras and shapes are sampled at; empty when nothing moves.
+  std::vector<double> motion_times;
+  std::vector<CameraDesc> camera_steps;  // at motion_times; empty = still camera
   FilmDesc film;
   RenderDesc render;
   std::vector<std::string> material_names;  // parallel to materials

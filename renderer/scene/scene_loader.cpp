@@ -25,6 +25,8 @@ constexpr std::string_view kCameraTypes[] = {"perspective"};
 constexpr std::string_view kFilters[] = {"box", "gaussian"};
 constexpr std::string_view kMaterialTypes[] = {"diffuse", "conductor", "dielectric", "principled"};
 
+}  // namespace
+
 CameraDesc parse_camera(JsonReader node) {
   node.expect_object();
   node.enumeration("type", kCameraTypes);
@@ -58,6 +60,8 @@ CameraDesc parse_camera(JsonReader node) {
   return cam;
 }
 
+namespace {
+
 FilmDesc parse_film(JsonReader node) {
   node.expect_object();
   node.allow_keys({"width", "height", "filter"});
@@ -83,16 +87,31 @@ void parse_sampling_budget(JsonReader& node, RenderDesc& render) {
   if (node.optional_child("clamp")) render.clamp = node.number("clamp", Range::positive());
 }
 
+// render.shutter: [open, close], frames relative to the frame rendered.
+void parse_shutter(JsonReader& node, RenderDesc& render) {
+  const auto shutter = node.optional_child("shutter");
+  if (!shutter) return;
+  const std::vector<double> v = shutter->as_number_array();
+  if (v.size() != 2)
+    shutter->fail("expected [open, close] (2 numbers, frames relative to the frame), got " +
+                  std::to_string(v.size()) + " numbers");
+  if (!(v[0] <= v[1]))
+    shutter->fail("expected open <= close, got open " + describe_json(v[0]) + " after close " +
+                  describe_json(v[1]));
+  render.shutter = RenderDesc::Shutter{v[0], v[1]};
+}
+
 RenderDesc parse_render(JsonReader node) {
   node.expect_object();
   node.allow_keys({"spp", "max_depth", "seed", "aovs", "noise_target", "min_spp", "max_spp",
-                   "time_limit", "clamp"});
+                   "time_limit", "clamp", "shutter"});
   RenderDesc render;
   render.spp = int(node.integer("spp", 1, INT_MAX));
   render.max_depth = int(node.integer("max_depth", 8, 1, INT_MAX));
   if (const auto seed = node.optional_child("seed")) render.seed = seed->as_uint64();
   if (const auto aovs = node.optional_child("aovs")) render.aovs = read_aov_list(*aovs);
   parse_sampling_budget(node, render);
+  parse_shutter(node, render);
   return render;
 }
 
@@ -156,6 +175,8 @@ void check_light_group(JsonReader light, const std::string& group) {
   }
 }
 
+}  // namespace
+
 // Shapes, lights and bounded media stay within kMaxWorldCoordinate, after
 // their transforms (render_space.h says why).
 void check_extent(const JsonReader& node, double extent) {
@@ -165,6 +186,8 @@ void check_extent(const JsonReader& node, double extent) {
         "got coordinates up to " +
         (std::isfinite(extent) ? describe_json(extent) : std::string("infinity")));
 }
+
+namespace {
 
 void parse_lights(const JsonReader& lights, SceneParseContext& ctx, SceneDescription& scene) {
   lights.expect_array();
@@ -196,7 +219,8 @@ std::string content_hash(const nlohmann::json& doc, const SceneParseContext& ctx
   return hash.hex();
 }
 
-SceneDescription parse_frame_document(const nlohmann::json& doc, const std::filesystem::path& file,
+SceneDescription parse_frame_document(const nlohmann::json& doc, const nlohmann::json* keyed,
+                                      const std::filesystem::path& file,
                                       const SceneLoadOptions& options);
 
 // The frame whose files a scene loaded at `time` reads: the nearest whole frame.
@@ -223,15 +247,16 @@ bool keyed_at(const nlohmann::json& doc, const std::string& path) {
 }
 
 // A scene over time is parsed as the document of one frame: every keyframed
-// value evaluated at options.frame. A scene without keys is its own frame
-// document, so its hash is what it always was. A value refused after
+// value evaluated at options.frame (and, under a shutter, the camera and
+// shapes at times around it: motion_parse.cpp). A scene without keys is its
+// own frame document, so its hash is what it always was. A value refused after
 // evaluation says so, and at which frame, since the file holds no such value.
 SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem::path& file,
                                 const SceneLoadOptions& options) {
-  if (!has_keyframes(doc)) return parse_frame_document(doc, file, options);
+  if (!has_keyframes(doc)) return parse_frame_document(doc, nullptr, file, options);
   const nlohmann::json frame_doc = evaluate_keyframes(doc, options.frame, file.string());
   try {
-    return parse_frame_document(frame_doc, file, options);
+    return parse_frame_document(frame_doc, &doc, file, options);
   } catch (const JsonError& e) {
     if (!keyed_at(doc, e.json_path())) throw;
     throw SceneError(e.file(), e.json_path(),
@@ -239,7 +264,9 @@ SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem
   }
 }
 
-SceneDescription parse_frame_document(const nlohmann::json& doc, const std::filesystem::path& file,
+// `keyed`: the document with its keyframes, when it has any.
+SceneDescription parse_frame_document(const nlohmann::json& doc, const nlohmann::json* keyed,
+                                      const std::filesystem::path& file,
                                       const SceneLoadOptions& options) {
   SceneParseContext ctx;
   ctx.file = file.string();
@@ -285,6 +312,7 @@ SceneDescription parse_frame_document(const nlohmann::json& doc, const std::file
     scene.layers = parse_layers(*layers, scene.lights, scene.media);
   }
   scene.content_hash = content_hash(doc, ctx);
+  if (keyed && scene.render.shutter) parse_motion(*keyed, options.frame, ctx, scene);
   return scene;
 }
 

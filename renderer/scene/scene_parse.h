@@ -43,10 +43,20 @@ Transform parse_transform(JsonReader node);
 // magnitude (and not NaN).
 bool transform_fits(const Transform& t, double limit);
 
+CameraDesc parse_camera(JsonReader node);
 ShapeDesc parse_shape(JsonReader node, SceneParseContext& ctx);
 // Gives every shape its name (the default where it has none: shape_name) and
 // refuses a name two shapes share, at the second one's JSON path.
 void name_shapes(const JsonReader& shapes, SceneDescription& scene);
+// Refuses (at `node`) an extent beyond kMaxWorldCoordinate (render_space.h).
+void check_extent(const JsonReader& node, double extent);
+// Motion blur (scene/motion_parse.cpp): with scene.render.shutter, the camera
+// and the shapes that hold keyframes in `keyed` (the scene document before
+// evaluation) sampled over [frame + open, frame + close] into
+// scene.motion_times, camera_steps and each shape's steps; the content hash
+// then covers them too.
+void parse_motion(const nlohmann::json& keyed, double frame, SceneParseContext& ctx,
+                  SceneDescription& scene);
 LightDesc parse_light(JsonReader node, SceneParseContext& ctx);
 // One entry of "media" (`name` is its key); loads and validates .vdb grids.
 MediumDesc parse_medium(JsonReader node, const std::string& name, SceneParseContext& ctx);

@@ -41,6 +41,18 @@ TEST(ExampleScenes, CornellBoxRenders) {
   EXPECT_GT(render_small(load_scene(kScenes / "cornell/scene.json")), 0.01);
 }
 
+TEST(ExampleScenes, MotionBlurRendersAndTheShutterMatters) {
+  const SceneDescription d =
+      load_scene(kScenes / "motion-blur/scene.json", SceneLoadOptions{.frame = 4});
+  EXPECT_EQ(d.motion_times.size(), 9u);
+  EXPECT_EQ(d.camera_steps.size(), 9u);
+  SceneDescription still = d;
+  still.motion_times.clear();
+  still.camera_steps.clear();
+  for (ShapeDesc& s : still.shapes) s.steps.clear();
+  EXPECT_NE(render_small(d), render_small(still));
+}
+
 TEST(ExampleScenes, FogShaftsRendersAndTheFogMatters) {
   const SceneDescription d = load_scene(kScenes / "fog-shafts/scene.json");
   ASSERT_EQ(d.media.size(), 1u);
