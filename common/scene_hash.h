@@ -47,4 +47,18 @@ std::vector<std::string> frame_file_references(const nlohmann::json& frame_doc, 
 // Whether the scene changes over frames: keyframes or a per-frame file.
 bool is_animated(const nlohmann::json& doc);
 
+// What a shutter adds to a keyed frame's state (docs/scene-format.md, "Scene
+// hash"): two frames alike at the frame but not over their shutters are
+// different scenes. The document evaluated at the shutter's open and close
+// (frame + render.shutter), at every key strictly inside, and — when any key
+// is smooth — at 8 evenly spaced times between: enough to tell apart any two
+// piecewise-linear or piecewise-cubic motions in practice. Times are not
+// included, so two frames with the same motion share a state. null when the
+// scene has no keys or the frame document no shutter [open, close].
+nlohmann::json shutter_state(const nlohmann::json& doc, double frame, const std::string& file);
+
+// `hash` (of the frame document and its files) extended by a non-null
+// shutter_state: the renderer's vesper:scene_hash and the server's check agree.
+std::string hash_with_shutter(const std::string& hash, const nlohmann::json& state);
+
 }  // namespace vesper

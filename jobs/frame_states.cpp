@@ -28,6 +28,9 @@ std::optional<std::string> state_of(const nlohmann::json& scene, int frame,
     if (it == assets.end()) return std::nullopt;
     text += "\n" + it->second;  // the bytes, as the scene hash reads them
   }
+  // Under a shutter, the motion around the frame too (as the scene hash).
+  if (const nlohmann::json shutter = shutter_state(scene, frame, "scene"); !shutter.is_null())
+    text += "\n" + shutter.dump();
   return sha256_hex(text);
 }
 

@@ -177,7 +177,7 @@ ResultExpectations::Scene ResultExpectations::scene(const Lease& lease) {
                                "', which no asset of the job holds");
     hash.add_file(read_file(*file, "asset '" + asset->name + "'"));
   }
-  scene.hash = hash.hex();
+  scene.hash = hash_with_shutter(hash.hex(), shutter_state(raw, frame, "scene"));
   std::lock_guard lock(mutex_);
   return scenes_[{job, is_animated(raw) ? frame : kEveryFrame}] = scene;
 }

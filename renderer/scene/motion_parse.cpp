@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "common/keyframes.h"
-#include "common/scene_hash.h"
 #include "renderer/scene/render_space.h"
 #include "renderer/scene/scene_parse.h"
 
@@ -118,13 +117,11 @@ void parse_motion(const nlohmann::json& keyed, double frame, SceneParseContext& 
   const std::vector<double> times = shutter_times(t0, t1, steps);
   // Step shapes reload their mesh files: the hash counts each file once.
   const std::vector<std::filesystem::path> files = ctx.referenced_files;
-  nlohmann::json motion = nlohmann::json::array();
   std::vector<std::vector<ShapeDesc>> shapes(times.size(),
                                              std::vector<ShapeDesc>(parts.shapes.size()));
   for (size_t k = 0; k < times.size(); ++k) {
     const nlohmann::json step_doc = evaluate_keyframes(parts.doc, times[k], ctx.file);
     parse_step(step_doc, parts, ctx, scene, shapes[k]);
-    motion.push_back({times[k], step_doc});
   }
   ctx.referenced_files = files;
   for (size_t j = 0; j < parts.shapes.size(); ++j) {
@@ -140,8 +137,6 @@ void parse_motion(const nlohmann::json& keyed, double frame, SceneParseContext& 
   } else {
     scene.motion_times = times;
   }
-  // Two frames alike at the frame but not over the shutter are different scenes.
-  scene.content_hash = SceneHash(nlohmann::json{scene.content_hash, motion}).hex();
 }
 
 }  // namespace vesper

@@ -312,7 +312,12 @@ SceneDescription parse_frame_document(const nlohmann::json& doc, const nlohmann:
     scene.layers = parse_layers(*layers, scene.lights, scene.media);
   }
   scene.content_hash = content_hash(doc, ctx);
-  if (keyed && scene.render.shutter) parse_motion(*keyed, options.frame, ctx, scene);
+  if (keyed && scene.render.shutter) {
+    parse_motion(*keyed, options.frame, ctx, scene);
+    // The farm's result check and reuse extend the hash by the same rule.
+    scene.content_hash =
+        hash_with_shutter(scene.content_hash, shutter_state(*keyed, options.frame, ctx.file));
+  }
   return scene;
 }
 

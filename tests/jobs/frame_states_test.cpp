@@ -54,6 +54,19 @@ TEST(FrameStates, FramesThatReadDifferentFilesDiffer) {
   EXPECT_EQ(states.at(1), states.at(3));  // same document, same bytes
 }
 
+TEST(FrameStates, UnderAShutterTheMotionAroundTheFrameCounts) {
+  // Held at frames 2 and 3, but frame 2's shutter [1.5, 2] sees the fov change.
+  const json scene = json::parse(
+      R"({"render": {"shutter": [-0.5, 0]}, "camera": {"fov": {"keys": [[1.5, 30], [2, 40]]}}})");
+  const auto states = frame_states(scene, spec_of({2, 3, 4}, {}));
+  EXPECT_NE(states.at(2), states.at(3));
+  EXPECT_EQ(states.at(3), states.at(4));
+  json sharp = scene;
+  sharp["render"].erase("shutter");
+  const auto still = frame_states(sharp, spec_of({2, 3}, {}));
+  EXPECT_EQ(still.at(2), still.at(3));
+}
+
 TEST(FrameStates, NoStatesWhenAFrameCannotBeTold) {
   const json seq = json::parse(R"({"media": {"s": {"file": "assets/smoke.#.vdb"}}})");
   EXPECT_TRUE(frame_states(seq, spec_of({1, 2}, {{"assets/smoke.1.vdb", "x"}})).empty());

@@ -54,3 +54,35 @@ TEST(SceneAnimation, AValueKeyedOutOfRangeIsRejectedAtTheFrameItReaches) {
 
 }  // namespace
 }  // namespace vesper
+
+namespace vesper {
+namespace {
+
+// A quad keyed to move during frame 2 only, rendered under a shutter.
+nlohmann::json moving_quad_scene(const nlohmann::json& shutter) {
+  nlohmann::json doc = test::minimal_scene();
+  doc["render"]["shutter"] = shutter;
+  doc["shapes"] = nlohmann::json::parse(R"([{"type": "quad", "material": "m",
+      "corner": {"keys": [[1.5, [-1, -1, 0]], [2, [-0.5, -1, 0]]]},
+      "edge1": [2, 0, 0], "edge2": [0, 2, 0]}])");
+  return doc;
+}
+
+TEST(SceneAnimation, TheHashCoversTheMotionOverTheShutter) {
+  const nlohmann::json blurred = moving_quad_scene({-0.5, 0});
+  // Frames 2 and 3 hold the quad at the same place, but frame 2's shutter
+  // [1.5, 2] sees it move: different scenes.
+  EXPECT_NE(parse_scene(blurred, "s.json", {.frame = 2}).content_hash,
+            parse_scene(blurred, "s.json", {.frame = 3}).content_hash);
+  // Frames 3 and 4 are still over their shutters: the same scene.
+  EXPECT_EQ(parse_scene(blurred, "s.json", {.frame = 3}).content_hash,
+            parse_scene(blurred, "s.json", {.frame = 4}).content_hash);
+  // Without a shutter frames 2 and 3 are one state.
+  nlohmann::json sharp = blurred;
+  sharp["render"].erase("shutter");
+  EXPECT_EQ(parse_scene(sharp, "s.json", {.frame = 2}).content_hash,
+            parse_scene(sharp, "s.json", {.frame = 3}).content_hash);
+}
+
+}  // namespace
+}  // namespace vesper
