@@ -30,7 +30,6 @@ const Range kCdlOffset = Range::closed(-1e3, 1e3);
 const Range kCdlPower = Range::left_open(0, 100);
 const Range kCdlSaturation = Range::closed(0, 100);
 
-// The first run of '#' in the file name: (position, length), or length 0.
 fs::path resolve(const fs::path& base_dir, const std::string& s) {
   const fs::path p(s);
   return p.is_absolute() ? p : (base_dir / p).lexically_normal();

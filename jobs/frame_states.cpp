@@ -1,8 +1,10 @@
 #include "jobs/frame_states.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 
+#include "common/frame_pattern.h"
 #include "common/json_error.h"
 #include "common/scene_hash.h"
 #include "common/sha256.h"
@@ -34,7 +36,43 @@ std::optional<std::string> state_of(const nlohmann::json& scene, int frame,
   return sha256_hex(text);
 }
 
+// Whether `name` is a frame of the sequence `pattern` (both normalized):
+// the pattern with its '#' run replaced by an optional '-' and digits.
+bool is_frame_of(const std::string& name, const std::string& pattern) {
+  const std::string file = std::filesystem::path(pattern).filename().string();
+  const auto [pos, len] = find_frame_pattern(file);
+  const size_t at = pattern.size() - file.size() + pos;  // the run in `pattern`
+  const std::string prefix = pattern.substr(0, at), suffix = pattern.substr(at + len);
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, at, prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return false;
+  std::string digits = name.substr(at, name.size() - at - suffix.size());
+  if (digits[0] == '-') digits.erase(0, 1);
+  return !digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos;
+}
+
+std::string normal(const std::string& name) {
+  return std::filesystem::path(name).lexically_normal().generic_string();
+}
+
 }  // namespace
+
+std::vector<Asset> frame_assets(const nlohmann::json& scene, int frame,
+                                const std::vector<Asset>& assets) {
+  std::vector<std::string> patterns;
+  for (const std::string& ref : hashed_file_references(scene))
+    if (has_frame_pattern(ref)) patterns.push_back(normal(ref));
+  if (patterns.empty()) return assets;
+  std::vector<Asset> out;
+  for (const Asset& a : assets) {
+    const std::string name = normal(a.name);
+    const bool other_frame = std::any_of(patterns.begin(), patterns.end(), [&](const auto& p) {
+      return is_frame_of(name, p) && name != normal(frame_path(p, frame).string());
+    });
+    if (!other_frame) out.push_back(a);
+  }
+  return out;
+}
 
 std::map<int, std::string> frame_states(const nlohmann::json& scene, const JobSpec& spec) {
   std::map<int, std::string> out;

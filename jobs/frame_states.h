@@ -7,6 +7,7 @@
 // asset is known by its blob's sha256.
 #include <map>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,5 +21,13 @@ namespace vesper {
 // evaluate, a file a frame reads that no asset holds — so that the job is
 // reused only as a whole (by its scene blob), as before.
 std::map<int, std::string> frame_states(const nlohmann::json& scene, const JobSpec& spec);
+
+// The assets a task of frame `frame` needs: `assets` less the other frames'
+// files of the scene's sequences (an asset whose name is a `####` reference
+// with digits in place of the run, other than `frame`'s). A worker fetches
+// these only, not every frame of a long sequence for each task. Everything
+// else is kept (a scene that is not a document keeps all).
+std::vector<Asset> frame_assets(const nlohmann::json& scene, int frame,
+                                const std::vector<Asset>& assets);
 
 }  // namespace vesper

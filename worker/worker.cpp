@@ -11,8 +11,10 @@
 #include <random>
 #include <set>
 
+#include "common/json_parse.h"
 #include "common/sha256.h"
 #include "common/utf8.h"
+#include "jobs/frame_states.h"
 #include "protocol/worker_messages.h"
 #include "worker/backoff.h"
 #include "worker/blob_cache.h"
@@ -89,7 +91,7 @@ struct Worker::Impl {
   void say_goodbye();
   void work_on(const protocol::LeaseResponse& l);
   std::optional<fs::path> fetch(const protocol::LeaseResponse& l, LeaseRetry& retry);
-  void keep_cache_under_cap(const protocol::LeaseResponse& l);
+  void keep_cache_under_cap(const protocol::LeaseResponse& l, const std::vector<Asset>& assets);
   std::optional<fs::path> run(const protocol::LeaseResponse& l, const fs::path& task_dir,
                               double& seconds, std::string& log, LeaseRetry& retry);
   bool heartbeat(const protocol::LeaseResponse& l, double progress, LeaseRetry& retry);
@@ -250,10 +252,11 @@ void Worker::Impl::work_on(const protocol::LeaseResponse& l) {
 
 // Marks the task's blobs used now, then evicts the least recently used
 // others while the cache is over its cap.
-void Worker::Impl::keep_cache_under_cap(const protocol::LeaseResponse& l) {
+void Worker::Impl::keep_cache_under_cap(const protocol::LeaseResponse& l,
+                                        const std::vector<Asset>& assets) {
   std::set<std::string> in_use{l.scene};
   mark_used(cfg.cache_dir / (l.scene + ".json"));
-  for (const protocol::AssetRef& a : l.assets) {
+  for (const Asset& a : assets) {
     in_use.insert(a.blob);
     mark_used(asset_cache_file(cfg.cache_dir, a.blob));
   }
@@ -262,23 +265,39 @@ void Worker::Impl::keep_cache_under_cap(const protocol::LeaseResponse& l) {
     spdlog::info("worker: cache over its cap: evicted {} blobs ({} bytes)", e.blobs, e.bytes);
 }
 
+namespace {
+// The assets the lease's frame reads (jobs/frame_states.h, frame_assets):
+// of a `####` sequence, its own frame's file, not every frame of the job.
+// All of them when the scene cannot be read as JSON (the render says why).
+std::vector<Asset> task_assets(const protocol::LeaseResponse& l, const fs::path& scene_file) {
+  std::vector<Asset> assets;  // the job store's spelling of the lease's assets
+  for (const protocol::AssetRef& a : l.assets) assets.push_back({a.name, a.blob});
+  try {
+    return frame_assets(read_json_file(scene_file, "the scene"), l.task.frame, assets);
+  } catch (const std::exception&) {
+    return assets;
+  }
+}
+}  // namespace
+
 // The scene and its assets, from the verified cache, in a task directory.
 std::optional<fs::path> Worker::Impl::fetch(const protocol::LeaseResponse& l, LeaseRetry& retry) {
-  BlobCache::Fetched got = cache->fetch(l.scene, cfg.cache_dir / (l.scene + ".json"), "scene",
-                                        unique_name(), retry, l.task.id);
-  for (size_t i = 0; got.problem.empty() && i < l.assets.size(); ++i)
-    got = cache->fetch(l.assets[i].blob, asset_cache_file(cfg.cache_dir, l.assets[i].blob),
-                       "asset '" + l.assets[i].name + "'", unique_name(), retry, l.task.id);
+  const fs::path scene_file = cfg.cache_dir / (l.scene + ".json");
+  BlobCache::Fetched got =
+      cache->fetch(l.scene, scene_file, "scene", unique_name(), retry, l.task.id);
+  const std::vector<Asset> assets =
+      got.problem.empty() ? task_assets(l, scene_file) : std::vector<Asset>{};
+  for (size_t i = 0; got.problem.empty() && i < assets.size(); ++i)
+    got = cache->fetch(assets[i].blob, asset_cache_file(cfg.cache_dir, assets[i].blob),
+                       "asset '" + assets[i].name + "'", unique_name(), retry, l.task.id);
   if (got.gave_up) {
     drop(l, got.problem);
     return std::nullopt;
   }
   std::string problem = got.problem;
   if (problem.empty()) {
-    keep_cache_under_cap(l);
+    keep_cache_under_cap(l, assets);
     try {
-      std::vector<Asset> assets;  // the job store's spelling of the lease's assets
-      for (const protocol::AssetRef& a : l.assets) assets.push_back({a.name, a.blob});
       return materialise_task_dir(cfg.cache_dir, l.scene, assets, unique_name());
     } catch (const std::exception& e) {
       problem = std::string("cannot prepare the task directory: ") + e.what();

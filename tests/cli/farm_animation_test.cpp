@@ -83,6 +83,17 @@ TEST_F(FarmAnimation, AVdbSequenceJobRendersFrameNFromFileN) {
   ASSERT_EQ(f.exit_code, 0) << f.err;
   render_local_and_compare(scene, "smoke.0002.exr", 2);
   render_local_and_compare(scene, "smoke.0003.exr", 3);
+  // Each task's directory holds its own frame of the sequence only.
+  int task_dirs = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir_ / "cache-w1")) {
+    if (e.path().filename() != "scene.json") continue;
+    ++task_dirs;
+    int vdbs = 0;
+    for (const auto& f : std::filesystem::recursive_directory_iterator(e.path().parent_path()))
+      vdbs += f.path().extension() == ".vdb";
+    EXPECT_EQ(vdbs, 1) << e.path();
+  }
+  EXPECT_EQ(task_dirs, 2);
   // Frame 3 read smoke.0003.vdb: rendering it with frame 2's file differs.
   std::filesystem::copy_file(dir_ / "scene/smoke.0002.vdb", dir_ / "scene/smoke.0003.vdb",
                              std::filesystem::copy_options::overwrite_existing);

@@ -76,3 +76,26 @@ TEST(FrameStates, NoStatesWhenAFrameCannotBeTold) {
 
 }  // namespace
 }  // namespace vesper
+
+namespace vesper {
+namespace {
+
+TEST(FrameAssets, ATaskNeedsItsOwnFrameOfEachSequenceAndEverythingElse) {
+  const json scene = json::parse(R"({"shapes": [{"file": "assets/x-cube.obj"}],
+      "media": {"s": {"file": "assets/f/smoke.##.vdb"}}})");
+  const std::vector<Asset> all = {
+      {"assets/x-cube.obj", "c"},      {"assets/f/smoke.01.vdb", "1"},
+      {"assets/f/smoke.02.vdb", "2"},  {"assets/f/smoke.103.vdb", "3"},
+      {"assets/f/smoke.x.vdb", "odd"}, {"assets/g/smoke.01.vdb", "other folder"}};
+  EXPECT_EQ(frame_assets(scene, 2, all),
+            (std::vector<Asset>{{"assets/x-cube.obj", "c"},
+                                {"assets/f/smoke.02.vdb", "2"},
+                                {"assets/f/smoke.x.vdb", "odd"},
+                                {"assets/g/smoke.01.vdb", "other folder"}}));
+  EXPECT_EQ(frame_assets(scene, 103, all).at(1).blob, "3");
+  // A still scene needs every asset.
+  EXPECT_EQ(frame_assets(json::parse(R"({"shapes": []})"), 2, all), all);
+}
+
+}  // namespace
+}  // namespace vesper
