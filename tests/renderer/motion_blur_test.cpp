@@ -187,6 +187,27 @@ TEST(MotionBlur, KeyedCornersCentresAndTransformsMoveByInstance) {
   EXPECT_FALSE(rigid_motion(g.quads[0]));  // still
 }
 
+// The camera moving instead: a still edge at x = 0 seen from a camera
+// sliding from x = 3 to 0 over the shutter (looking straight down -z) is the
+// edge at x = -3 .. 0 relative to it: the same expected pixels.
+TEST(MotionBlur, AMovingCameraBlursLikeAMovingEdge) {
+  json doc = moving_black_quad({0, 0.5});
+  doc["shapes"][0]["corner"] = {0, -10, 0};
+  doc["camera"]["from"] = json::parse(R"({"keys": [[1, [3, 0, 4]], [2, [-3, 0, 4]]]})");
+  doc["camera"]["to"] = json::parse(R"({"keys": [[1, [3, 0, 0]], [2, [-3, 0, 0]]]})");
+  const Scene scene = load(doc);
+  ASSERT_EQ(scene.camera_steps.size(), 2u);
+  std::string log;
+  const int rejected = rejected_pixels(
+      scene, 1.0,
+      [](int i) {
+        const auto [x0, x1] = pixel_span(i, 16, 4.0);
+        return mean_left_fraction(x0, x1, -3.0, 0.0);
+      },
+      log);
+  EXPECT_EQ(rejected, 0) << log;
+}
+
 TEST(MotionBlur, TheEdgeTestRejectsAWrongTime) {
   // Every sample at the shutter's opening (a zero-length shutter at 0): the
   // image of the edge at -3, not the blur; the test above must see it.
