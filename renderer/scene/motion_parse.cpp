@@ -141,10 +141,30 @@ void parse_step(const nlohmann::json& step_doc, const MovingParts& parts, SceneP
     parse_medium_step(root.object("media"), name, medium_named(scene, name));
 }
 
-// A zero-length shutter: the moving parts take their one step's value.
+// The parts whose keyed values hold over the shutter (every step alike, as
+// with a zero-length shutter, or keys that end before it): they do not move.
+MovingParts held_parts(const std::vector<nlohmann::json>& step_docs, const MovingParts& parts) {
+  auto held = [&](const nlohmann::json::json_pointer& at) {
+    for (const nlohmann::json& d : step_docs)
+      if (d.at(at) != step_docs.front().at(at)) return false;
+    return true;
+  };
+  using Ptr = nlohmann::json::json_pointer;
+  MovingParts out;
+  out.camera = parts.camera && held(Ptr("/camera"));
+  for (size_t i : parts.shapes)
+    if (held(Ptr("/shapes/" + std::to_string(i)))) out.shapes.push_back(i);
+  for (const std::string& name : parts.media)
+    if (held(Ptr("/media") / name)) out.media.push_back(name);
+  return out;
+}
+
+// Parts that do not move take their one value (that of every step).
 void take_instant(const MovingParts& parts, SceneDescription& scene) {
-  if (parts.camera) scene.camera = scene.camera_steps.front();
-  scene.camera_steps.clear();
+  if (parts.camera) {
+    scene.camera = scene.camera_steps.front();
+    scene.camera_steps.clear();
+  }
   for (size_t i : parts.shapes) {
     scene.shapes[i].geometry = std::move(scene.shapes[i].steps.front());
     scene.shapes[i].steps.clear();
@@ -176,30 +196,32 @@ void parse_motion(const nlohmann::json& keyed, double frame, SceneParseContext& 
   add_moving_media(keyed, parts);
   if (parts.empty()) return;
   const double t0 = frame + scene.render.shutter->open, t1 = frame + scene.render.shutter->close;
-  // A zero-length shutter is an instant: the frame's camera and shapes are
-  // those of frame + open, without motion blur.
+  // A zero-length shutter is an instant: the frame's camera, shapes and
+  // media placements are those of frame + open, without motion blur.
   const int steps = t0 == t1 ? 1 : needs_more_steps(parts.doc, t0, t1, false) ? kMaxMotionSteps : 2;
   const std::vector<double> times = shutter_times(t0, t1, steps);
   // Step shapes reload their mesh files: the hash counts each file once.
   const std::vector<std::filesystem::path> files = ctx.referenced_files;
   nlohmann::json motion = nlohmann::json::array();
+  std::vector<nlohmann::json> step_docs;
   std::vector<std::vector<ShapeDesc>> shapes(times.size(),
                                              std::vector<ShapeDesc>(parts.shapes.size()));
   for (size_t k = 0; k < times.size(); ++k) {
     const nlohmann::json step_doc = evaluate_keyframes(parts.doc, times[k], ctx.file);
     parse_step(step_doc, parts, ctx, scene, shapes[k]);
     motion.push_back({times[k], step_doc});
+    step_docs.push_back(step_doc);
   }
   ctx.referenced_files = files;
   for (size_t j = 0; j < parts.shapes.size(); ++j) {
     ShapeDesc& shape = scene.shapes[parts.shapes[j]];
     for (auto& step : shapes) shape.steps.push_back(std::move(step[j].geometry));
   }
-  if (steps == 1) {
-    take_instant(parts, scene);
-  } else {
-    scene.motion_times = times;
-  }
+  const MovingParts held = held_parts(step_docs, parts);
+  take_instant(held, scene);
+  const bool all_held = held.camera == parts.camera && held.shapes.size() == parts.shapes.size() &&
+                        held.media.size() == parts.media.size();
+  if (!all_held) scene.motion_times = times;
   // Two frames alike at the frame but not over the shutter are different scenes.
   scene.content_hash = SceneHash(nlohmann::json{scene.content_hash, motion}).hex();
 }

@@ -361,6 +361,24 @@ TEST(MotionBlur, AShutterOverAStillSceneChangesNothing) {
   EXPECT_TRUE(same_pixels(render(with).image, render(without).image));
 }
 
+TEST(MotionBlur, KeysHeldOverTheShutterMoveNothing) {
+  // The sphere's keys end at frame 1.1, before the shutter [0, 0.4] of frame
+  // 1.2 (the camera's run to frame 2): the sphere is still, the camera is not.
+  json doc = moving_room();
+  doc["render"]["shutter"] = {0, 0.4};
+  doc["shapes"][2]["center"]["keys"] = json::parse("[[1, [-0.5, 0.3, 0]], [1.1, [0.2, 0.3, 0]]]");
+  const SceneDescription d = parse_scene(doc, "m.json", SceneLoadOptions{.frame = 1.2});
+  EXPECT_TRUE(d.shapes[2].steps.empty());
+  EXPECT_DOUBLE_EQ(std::get<SphereShapeDesc>(d.shapes[2].geometry).center.x, 0.2);
+  EXPECT_EQ(d.camera_steps.size(), 9u);
+  // Nothing moving at all: no motion blur, the image of the still frame.
+  doc["camera"]["from"] = {0, 1, 3.9};
+  const Scene held = load(doc, 1.2);
+  EXPECT_FALSE(held.motion_blur);
+  doc["render"].erase("shutter");
+  EXPECT_TRUE(same_pixels(render(held).image, render(load(doc, 1.2)).image));
+}
+
 TEST(MotionBlur, BitwiseIdenticalForOneAndTwoThreads) {
   const Scene scene = load(moving_room());
   ASSERT_TRUE(scene.motion_blur);
