@@ -50,16 +50,6 @@ struct AccelGeometry {
   std::vector<AccelSphere> spheres;
   std::vector<AccelMesh> meshes;
 
-  // Whether any primitive moves over the shutter.
-  bool moving() const {
-    for (const AccelQuad& q : quads)
-      if (!q.steps.empty()) return true;
-    for (const AccelSphere& s : spheres)
-      if (!s.steps.empty()) return true;
-    for (const AccelMesh& m : meshes)
-      if (!m.steps.empty()) return true;
-    return false;
-  }
   // Quads + spheres + triangles.
   size_t primitive_count() const {
     size_t n = quads.size() + spheres.size();

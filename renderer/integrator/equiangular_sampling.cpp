@@ -42,14 +42,14 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const float t = seg->sample(u_eq.x);
   const float pdf_e = seg->pdf(t);
   const Vec3 x = ray.origin + ray.dir * t;
-  const MediumCoefficients c = scene.media.coefficients(x);
+  const MediumCoefficients c = scene.media.coefficients(x, ray.time);
   // A sphere light samples a point on itself (the MIS weights below are over
   // the distance only, so any unbiased light sample fits); a point light
   // needs no numbers, and takes none, as before radii existed.
   const Vec2 u_light = light.bounds()->is_point() ? Vec2{} : sampler.next2();
   const auto ls = light.sample(x, u_light);
   if (!(pdf_e > 0.f) || c.sigma_s.is_black() || !ls || ls->radiance.is_black()) return out;
-  const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y)};
+  const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y, ray.time)};
   const float f = phase.eval(-ray.dir, ls->wi);
   const Rgb tr_light = shadow_transmittance<true>(
       scene, Ray{x, ls->wi, ls->distance * (1.f - 1e-4f), ray.time}, sampler, rays);

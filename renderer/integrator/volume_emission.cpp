@@ -11,8 +11,10 @@ constexpr float kPointsPerVoxel = 1.f;
 
 Rgb integrate_grid(const GridMedium& g, const Ray& ray, float t_end,
                    const std::vector<ThroughputStep>& steps, float u) {
-  const Vec3 o = g.render_to_emission_index.apply_point(ray.origin),
-             d = g.render_to_emission_index.apply_vector(ray.dir);
+  const Vec3 o = map_at(g.emission_index_steps, g.render_to_emission_index, ray.time, ray.origin,
+                        true),
+             d = map_at(g.emission_index_steps, g.render_to_emission_index, ray.time, ray.dir,
+                        false);
   const float voxels_per_t = length(d);
   if (!(voxels_per_t > 0.f)) return {};
   const float h = 1.f / (voxels_per_t * kPointsPerVoxel);  // lattice spacing in t

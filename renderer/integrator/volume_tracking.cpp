@@ -35,7 +35,7 @@ FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantS
       }
       if (u < p_absorb + p_scatter) {
         throughput *= c.sigma_s / (sigma_maj * p_scatter);
-        flight = {FlightEvent::Scattered, t, media.pick_phase_g(p, sampler.next1())};
+        flight = {FlightEvent::Scattered, t, media.pick_phase_g(p, sampler.next1(), ray.time)};
         return false;
       }
       if (p_null <= 0.f) {  // rounding: no null mass left
@@ -64,7 +64,7 @@ void for_spans_before(const MediaSet& media, const std::vector<MajorantSpan>& sp
     if (s.t0 >= t) break;
     const float t1 = std::min(s.t1, t);
     const float mid = std::isinf(t1) ? s.t0 + 1.f : 0.5f * (s.t0 + t1);
-    f(media.coefficients(ray.origin + ray.dir * mid), s.t0, t1);
+    f(media.coefficients(ray.origin + ray.dir * mid, ray.time), s.t0, t1);
   }
 }
 }  // namespace
@@ -84,7 +84,7 @@ float analytic_scatter_pdf(const MediaSet& media, const std::vector<MajorantSpan
   for_spans_before(media, spans, ray, t, [&](const MediumCoefficients& c, float a, float b) {
     optical += double((c.sigma_a + c.sigma_s).average()) * (b - a);
   });
-  const MediumCoefficients here = media.coefficients(ray.origin + ray.dir * t);
+  const MediumCoefficients here = media.coefficients(ray.origin + ray.dir * t, ray.time);
   return float(here.sigma_s.average() * std::exp(-optical));
 }
 
@@ -96,7 +96,7 @@ Rgb estimate_transmittance(const MediaSet& media, const Ray& ray, float tmax, Sa
     if (span.analytic) {
       if (std::isinf(span.t1)) return Rgb{};
       const MediumCoefficients c =
-          media.coefficients(ray.origin + ray.dir * (0.5f * (span.t0 + span.t1)));
+          media.coefficients(ray.origin + ray.dir * (0.5f * (span.t0 + span.t1)), ray.time);
       tr *= exp_rgb((c.sigma_a + c.sigma_s) * -(span.t1 - span.t0));
     } else {
       const bool went_on = for_each_tentative_collision(

@@ -28,7 +28,7 @@ bool for_each_tentative_collision(const MediaSet& media, const MajorantSpan& spa
     t += sample_exponential(sampler.next1(), span.sigma_maj);
     if (!(t < span.t1)) return true;  // memoryless: go on in the next span
     const Vec3 p = ray.origin + ray.dir * t;
-    if (!at_collision(t, p, media.coefficients(p))) return false;
+    if (!at_collision(t, p, media.coefficients(p, ray.time))) return false;
   }
 }
 

@@ -38,15 +38,14 @@ void spans_of(const Medium& medium, const Ray& ray, float tmax, std::vector<Majo
     const float sigma = max_sigma_t(h->sigma_a, h->sigma_s);
     if (sigma <= 0.f) return;
     float t0 = 0.f, t1 = tmax;
-    if (h->bounded && !h->bounds.clip(ray.origin, ray.dir, tmax, &t0, &t1)) return;
+    if (h->bounded && !h->box_at(ray.time).clip(ray.origin, ray.dir, tmax, &t0, &t1)) return;
     out.push_back({t0, t1, sigma, true});
     return;
   }
   const auto& g = std::get<GridMedium>(medium);
   const float scale = g.density_scale * max_sigma_t(g.sigma_a, g.sigma_s);
   if (scale <= 0.f) return;
-  const Vec3 o = g.render_to_index.apply_point(ray.origin),
-             d = g.render_to_index.apply_vector(ray.dir);
+  const Vec3 o = g.index_point(ray.origin, ray.time), d = g.index_vector(ray.dir, ray.time);
   g.majorants->walk(o, d, 0.f, tmax, [&](const MajorantSegment& s) {
     if (s.max_density > 0.f) out.push_back({s.t0, s.t1, s.max_density * scale, false});
     return true;
@@ -96,18 +95,16 @@ void MediaSet::majorant_spans(const Ray& ray, float tmax, std::vector<MajorantSp
   }
 }
 
-MediumCoefficients MediaSet::coefficients(const Vec3& p) const {
+MediumCoefficients MediaSet::coefficients(const Vec3& p, float time) const {
   MediumCoefficients c;
   for (const auto& m : media_) {
     if (const auto* h = std::get_if<HomogeneousMedium>(&m)) {
-      if (h->bounded && (p.x < h->bounds.lo.x || p.y < h->bounds.lo.y || p.z < h->bounds.lo.z ||
-                         p.x > h->bounds.hi.x || p.y > h->bounds.hi.y || p.z > h->bounds.hi.z))
-        continue;
+      if (!h->contains(p, time)) continue;
       c.sigma_a += h->sigma_a;
       c.sigma_s += h->sigma_s;
     } else {
       const auto& g = std::get<GridMedium>(m);
-      const float d = g.density->sample(g.render_to_index.apply_point(p)) * g.density_scale;
+      const float d = g.density->sample(g.index_point(p, time)) * g.density_scale;
       if (d > 0.f) {
         c.sigma_a += g.sigma_a * d;
         c.sigma_s += g.sigma_s * d;
@@ -117,7 +114,7 @@ MediumCoefficients MediaSet::coefficients(const Vec3& p) const {
   return c;
 }
 
-float MediaSet::pick_phase_g(const Vec3& p, float u) const {
+float MediaSet::pick_phase_g(const Vec3& p, float u, float time) const {
   if (media_.size() == 1) {
     return std::visit([](const auto& m) { return m.g; }, media_[0]);
   }
@@ -127,14 +124,10 @@ float MediaSet::pick_phase_g(const Vec3& p, float u) const {
   for (size_t i = 0; i < n; ++i) {
     float w = 0.f;
     if (const auto* h = std::get_if<HomogeneousMedium>(&media_[i])) {
-      const bool inside =
-          !h->bounded || (p.x >= h->bounds.lo.x && p.y >= h->bounds.lo.y && p.z >= h->bounds.lo.z &&
-                          p.x <= h->bounds.hi.x && p.y <= h->bounds.hi.y && p.z <= h->bounds.hi.z);
-      if (inside) w = h->sigma_s.average();
+      if (h->contains(p, time)) w = h->sigma_s.average();
     } else {
       const auto& g = std::get<GridMedium>(media_[i]);
-      w = g.density->sample(g.render_to_index.apply_point(p)) * g.density_scale *
-          g.sigma_s.average();
+      w = g.density->sample(g.index_point(p, time)) * g.density_scale * g.sigma_s.average();
     }
     weights[i] = std::max(w, 0.f);
     total += weights[i];

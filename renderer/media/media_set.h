@@ -27,12 +27,14 @@ class MediaSet {
   const std::vector<Medium>& media() const { return media_; }
 
   // Spans over [0, tmax] of the ray (tmax may be infinite), front to back;
-  // gaps without any medium are left out. `out` is cleared first.
+  // gaps without any medium are left out. `out` is cleared first. Moving
+  // media are where they are at ray.time (motion blur).
   void majorant_spans(const Ray& ray, float tmax, std::vector<MajorantSpan>& out) const;
-  MediumCoefficients coefficients(const Vec3& p) const;
+  // At p, at shutter time `time` (motion blur; a still medium ignores it).
+  MediumCoefficients coefficients(const Vec3& p, float time = 0.f) const;
   // Henyey-Greenstein g of the medium that scattered at p, picked with
   // probability proportional to each medium's average sigma_s there.
-  float pick_phase_g(const Vec3& p, float u) const;
+  float pick_phase_g(const Vec3& p, float u, float time = 0.f) const;
 
  private:
   std::vector<Medium> media_;

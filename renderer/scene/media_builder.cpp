@@ -24,6 +24,10 @@ std::shared_ptr<const MajorantGrid> majorants_of(const DensityGrid& grid,
                                             : MajorantGrid::global(grid));
 }
 
+Box3 render_box(const BoxDesc& b, const Vec3d& origin, double unit_scale) {
+  return {Vec3((b.min - origin) / unit_scale), Vec3((b.max - origin) / unit_scale)};
+}
+
 }  // namespace
 
 MediaSet build_media(const SceneDescription& desc, const Vec3d& origin, double unit_scale,
@@ -38,8 +42,9 @@ MediaSet build_media(const SceneDescription& desc, const Vec3d& origin, double u
       m.g = float(h->g);
       if (h->bounds) {
         m.bounded = true;
-        m.bounds.lo = Vec3((h->bounds->min - origin) / unit_scale);
-        m.bounds.hi = Vec3((h->bounds->max - origin) / unit_scale);
+        m.bounds = render_box(*h->bounds, origin, unit_scale);
+        for (const BoxDesc& b : h->bounds_steps)
+          m.bounds_steps.push_back(render_box(b, origin, unit_scale));
       } else {
         constexpr float inf = std::numeric_limits<float>::infinity();
         m.bounds = {Vec3(-inf), Vec3(inf)};
@@ -52,6 +57,8 @@ MediaSet build_media(const SceneDescription& desc, const Vec3d& origin, double u
     g.density = v.density;
     g.render_to_index = render_to_index(v.transform, *v.density, origin, unit_scale);
     g.majorants = majorants_of(*v.density, options);
+    for (const Transform& t : v.transform_steps)  // motion blur
+      g.index_steps.push_back(render_to_index(t, *v.density, origin, unit_scale));
     g.density_scale = float(v.density_scale);
     g.sigma_a = v.sigma_a * per_render_unit;
     g.sigma_s = v.sigma_s * per_render_unit;
@@ -60,6 +67,8 @@ MediaSet build_media(const SceneDescription& desc, const Vec3d& origin, double u
       g.emission = v.emission;
       g.render_to_emission_index = render_to_index(v.transform, *v.emission, origin, unit_scale);
       g.emission_majorants = majorants_of(*v.emission, options);
+      for (const Transform& t : v.transform_steps)
+        g.emission_index_steps.push_back(render_to_index(t, *v.emission, origin, unit_scale));
       g.emission_coefficient = v.emission_color * float(v.emission_scale * unit_scale);
     }
     if (g.density_scale > 0.f || g.emission) media.push_back(std::move(g));

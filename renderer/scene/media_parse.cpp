@@ -15,6 +15,8 @@ constexpr std::string_view kMediumTypes[] = {"homogeneous", "vdb"};
 // Henyey-Greenstein g = +-1 is a delta phase function with an infinite pdf.
 const Range kAsymmetry = Range::open(-1, 1);
 
+}  // namespace
+
 BoxDesc parse_box(JsonReader node) {
   node.expect_object();
   node.allow_keys({"min", "max"});
@@ -29,6 +31,8 @@ BoxDesc parse_box(JsonReader node) {
   }
   return box;
 }
+
+namespace {
 
 HomogeneousMediumDesc parse_homogeneous(JsonReader& node) {
   node.allow_keys({"type", "sigma_a", "sigma_s", "g", "bounds"});
@@ -64,6 +68,8 @@ std::shared_ptr<const DensityGrid> load_grid(const JsonReader& node,
 // Rendering maps render space to the grid's index space in float: the
 // grid's own transform combined with `transform` must stay far inside the
 // float range (a translate of 1e308 overflowed it), and be invertible.
+}  // namespace
+
 void check_grid_transform(JsonReader& node, const Transform& transform, const DensityGrid& grid) {
   constexpr double kLimit = 1e30;
   if (!transform_fits(transform * grid.index_to_world(), kLimit))
@@ -72,6 +78,8 @@ void check_grid_transform(JsonReader& node, const Transform& transform, const De
                       "' with its transform to map voxels to world positions within 1e30 "
                       "(and back): its matrix or inverse is larger or not finite");
 }
+
+namespace {
 
 VdbMediumDesc parse_vdb(JsonReader& node, SceneParseContext& ctx) {
   node.allow_keys({"type", "file", "grid", "density_scale", "sigma_a", "sigma_s", "g", "transform",

@@ -55,6 +55,22 @@ void include(Bounds& b, const VdbMediumDesc& v) {
   }
 }
 
+// A moving medium's extent at each step.
+void include_steps(Bounds& b, const MediumDesc& m) {
+  if (const auto* h = std::get_if<HomogeneousMediumDesc>(&m.medium)) {
+    for (const BoxDesc& box : h->bounds_steps) {
+      b.add(box.min);
+      b.add(box.max);
+    }
+    return;
+  }
+  VdbMediumDesc at_step = std::get<VdbMediumDesc>(m.medium);
+  for (const Transform& t : std::get<VdbMediumDesc>(m.medium).transform_steps) {
+    at_step.transform = t;
+    include(b, at_step);
+  }
+}
+
 Bounds scene_bounds(const SceneDescription& d) {
   Bounds b;
   b.add(d.camera.from);
@@ -65,7 +81,10 @@ Bounds scene_bounds(const SceneDescription& d) {
     for (const auto& step : s.steps) std::visit(add, step);
   }
   for (const auto& l : d.lights) std::visit(add, l.light);
-  for (const auto& m : d.media) std::visit(add, m.medium);
+  for (const auto& m : d.media) {
+    std::visit(add, m.medium);
+    include_steps(b, m);  // motion blur
+  }
   return b;
 }
 

@@ -201,7 +201,8 @@ Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options
                                         std::move(geometry.meshes));
   scene.camera_steps = make_camera_steps(desc, space);
   scene.motion_steps = desc.motion_times.size();
-  scene.motion_blur = !scene.camera_steps.empty() || scene.accel->geometry().moving();
+  // Something moves over the shutter: the camera, a shape or a medium.
+  scene.motion_blur = !desc.motion_times.empty();
   return scene;
 }
 

@@ -167,6 +167,8 @@ struct HomogeneousMediumDesc {
   Rgb sigma_a, sigma_s;  // per scene unit
   double g = 0;          // Henyey-Greenstein asymmetry, (-1, 1)
   std::optional<BoxDesc> bounds;
+  // Motion blur: the bounds at SceneDescription::motion_times; empty = still.
+  std::vector<BoxDesc> bounds_steps = {};
 };
 // Heterogeneous medium from an OpenVDB grid: sigma(x) = density(x) * density_scale * sigma.
 // World position of index point p: transform.apply_point(density->index_to_world().apply_point(p)).
@@ -178,6 +180,8 @@ struct VdbMediumDesc {
   Rgb sigma_a, sigma_s{1.f};
   double g = 0;
   Transform transform;
+  // Motion blur: the transform at SceneDescription::motion_times; empty = still.
+  std::vector<Transform> transform_steps = {};
   std::string emission_grid;                    // empty = no emission
   std::shared_ptr<const DensityGrid> emission;  // loaded when emission_grid is set
   double emission_scale = 0;

@@ -58,6 +58,11 @@ void check_extent(const JsonReader& node, double extent);
 void parse_motion(const nlohmann::json& keyed, double frame, SceneParseContext& ctx,
                   SceneDescription& scene);
 LightDesc parse_light(JsonReader node, SceneParseContext& ctx);
+// A box {"min", "max"}, min < max on every axis.
+BoxDesc parse_box(JsonReader node);
+// Refuses (at `node`'s "transform", or "file") a grid transform that maps
+// beyond the float range rendering uses.
+void check_grid_transform(JsonReader& node, const Transform& transform, const DensityGrid& grid);
 // One entry of "media" (`name` is its key); loads and validates .vdb grids.
 MediumDesc parse_medium(JsonReader node, const std::string& name, SceneParseContext& ctx);
 // The "layers" object, sorted by name; light groups and variant media are

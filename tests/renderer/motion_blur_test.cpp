@@ -187,6 +187,27 @@ TEST(MotionBlur, KeyedCornersCentresAndTransformsMoveByInstance) {
   EXPECT_FALSE(rigid_motion(g.quads[0]));  // still
 }
 
+// The camera moving instead: a still edge at x = 0 seen from a camera
+// sliding from x = 3 to 0 over the shutter (looking straight down -z) is the
+// edge at x = -3 .. 0 relative to it: the same expected pixels.
+TEST(MotionBlur, AMovingCameraBlursLikeAMovingEdge) {
+  json doc = moving_black_quad({0, 0.5});
+  doc["shapes"][0]["corner"] = {0, -10, 0};
+  doc["camera"]["from"] = json::parse(R"({"keys": [[1, [3, 0, 4]], [2, [-3, 0, 4]]]})");
+  doc["camera"]["to"] = json::parse(R"({"keys": [[1, [3, 0, 0]], [2, [-3, 0, 0]]]})");
+  const Scene scene = load(doc);
+  ASSERT_EQ(scene.camera_steps.size(), 2u);
+  std::string log;
+  const int rejected = rejected_pixels(
+      scene, 1.0,
+      [](int i) {
+        const auto [x0, x1] = pixel_span(i, 16, 4.0);
+        return mean_left_fraction(x0, x1, -3.0, 0.0);
+      },
+      log);
+  EXPECT_EQ(rejected, 0) << log;
+}
+
 TEST(MotionBlur, TheEdgeTestRejectsAWrongTime) {
   // Every sample at the shutter's opening (a zero-length shutter at 0): the
   // image of the edge at -3, not the blur; the test above must see it.
@@ -231,6 +252,63 @@ TEST(MotionBlur, ShadowRaysLiveAtTheCameraRaysTime) {
       },
       log);
   EXPECT_EQ(rejected, 0) << log;
+}
+
+// An absorbing slab (sigma_a 10, 0.1 thick: z in [-0.1, 0]) in front of a
+// white environment, its box keyed like the black quad's edge: x >= e(t),
+// e sweeping [-3, 0] over the shutter. A pixel's mean is the transmittance
+// exp(-sigma * length inside the box) averaged over the pixel and the
+// shutter, by midpoint quadrature of the exact ray-box lengths.
+json moving_slab(const json& shutter) {
+  json doc = edge_scene();
+  doc["render"]["shutter"] = shutter;
+  doc["lights"] = json::parse(R"([{"type": "environment", "radiance": [1, 1, 1]}])");
+  doc["media"] = json::parse(R"({"slab": {"type": "homogeneous", "sigma_a": [10, 10, 10],
+      "sigma_s": [0, 0, 0], "bounds": {
+        "min": {"keys": [[1, [-3, -10, -0.1]], [2, [3, -10, -0.1]]]},
+        "max": {"keys": [[1, [17, 10, 0]], [2, [23, 10, 0]]]}}}})");
+  return doc;
+}
+
+// Length of the ray o + t d (t >= 0) inside the box [lo, hi].
+double length_in_box(const Vec3d& o, const Vec3d& d, const Vec3d& lo, const Vec3d& hi) {
+  double a = 0, b = 1e30;
+  for (int i = 0; i < 3; ++i) {
+    double t0 = (lo[i] - o[i]) / d[i], t1 = (hi[i] - o[i]) / d[i];
+    if (t0 > t1) std::swap(t0, t1);
+    a = std::max(a, t0);
+    b = std::min(b, t1);
+  }
+  return b > a ? (b - a) * length(d) : 0.0;
+}
+
+double slab_transmittance(int column, double ea, double eb) {
+  const double tan_half_y = std::tan(15.0 * M_PI / 180.0), tan_half_x = tan_half_y * 8;
+  constexpr int kX = 48, kY = 8, kT = 48;
+  double sum = 0;
+  for (int ix = 0; ix < kX; ++ix)
+    for (int iy = 0; iy < kY; ++iy)
+      for (int it = 0; it < kT; ++it) {
+        const double fx = column + (ix + 0.5) / kX, fy = (iy + 0.5) / kY;  // row 0 (rows agree)
+        const double e = ea + (eb - ea) * (it + 0.5) / kT;
+        const Vec3d d{(2 * fx / 16 - 1) * tan_half_x, (1 - 2 * fy / 2) * tan_half_y, -1};
+        sum += std::exp(-10 * length_in_box({0, 0, 4}, d, {e, -10, -0.1}, {e + 20, 10, 0}));
+      }
+  return sum / (kX * kY * kT);
+}
+
+TEST(MotionBlur, AMovingMediumIsTheTimeAverageOfItsTransmittance) {
+  const Scene scene = load(moving_slab({0, 0.5}));
+  ASSERT_TRUE(scene.motion_blur);
+  std::string log;
+  const int rejected = rejected_pixels(
+      scene, 1.0, [](int i) { return slab_transmittance(i, -3, 0); }, log);
+  EXPECT_EQ(rejected, 0) << log;
+  // With every sample at the opening, the same test fails.
+  EXPECT_GE(
+      rejected_pixels(
+          load(moving_slab({0, 0})), 1.0, [](int i) { return slab_transmittance(i, -3, 0); }, log),
+      2);
 }
 
 // A room with a moving camera (smooth keys: 9 steps) and a moving sphere.
@@ -281,6 +359,24 @@ TEST(MotionBlur, AShutterOverAStillSceneChangesNothing) {
   const Scene without = load(doc);
   EXPECT_FALSE(with.motion_blur);
   EXPECT_TRUE(same_pixels(render(with).image, render(without).image));
+}
+
+TEST(MotionBlur, KeysHeldOverTheShutterMoveNothing) {
+  // The sphere's keys end at frame 1.1, before the shutter [0, 0.4] of frame
+  // 1.2 (the camera's run to frame 2): the sphere is still, the camera is not.
+  json doc = moving_room();
+  doc["render"]["shutter"] = {0, 0.4};
+  doc["shapes"][2]["center"]["keys"] = json::parse("[[1, [-0.5, 0.3, 0]], [1.1, [0.2, 0.3, 0]]]");
+  const SceneDescription d = parse_scene(doc, "m.json", SceneLoadOptions{.frame = 1.2});
+  EXPECT_TRUE(d.shapes[2].steps.empty());
+  EXPECT_DOUBLE_EQ(std::get<SphereShapeDesc>(d.shapes[2].geometry).center.x, 0.2);
+  EXPECT_EQ(d.camera_steps.size(), 9u);
+  // Nothing moving at all: no motion blur, the image of the still frame.
+  doc["camera"]["from"] = {0, 1, 3.9};
+  const Scene held = load(doc, 1.2);
+  EXPECT_FALSE(held.motion_blur);
+  doc["render"].erase("shutter");
+  EXPECT_TRUE(same_pixels(render(held).image, render(load(doc, 1.2)).image));
 }
 
 TEST(MotionBlur, BitwiseIdenticalForOneAndTwoThreads) {
