@@ -60,6 +60,25 @@ TEST_F(FarmAnimation, FrameSevenOfAnAnimatedJobIsBitwiseTheLocalRender) {
             read_exr(dir_ / "frames/anim.0007.exr").metadata.at("vesper:scene_hash"));
 }
 
+// The server checks each result's scene hash: under a shutter the renderer's
+// hash covers the motion, and the server's must too, or every task fails.
+TEST_F(FarmAnimation, AMotionBlurredFrameIsAcceptedAndBitwiseTheLocalRender) {
+  const auto config = write_config(10);
+  const auto scene = write_animated([](nlohmann::json& doc) {
+    doc["render"]["shutter"] = {-0.25, 0.25};
+    doc["camera"]["from"] =
+        nlohmann::json::parse(R"({"keys": [[1, [0, 1, 3.9]], [9, [0.6, 1.3, 3.4]]]})");
+  });
+  start_server(config);
+  start_worker("w1", config);
+  const long long id = submit(scene.string() + " --frames 4 --name blur");
+  ASSERT_EQ(wait_finished(id, 120).at("counts").at("done"), 1);
+  const RunResult f = farm(fmt::format("fetch {} -o {}", id, (dir_ / "frames").string()));
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  render_local_and_compare(scene, "blur.0004.exr", 4);
+  EXPECT_EQ(read_exr(dir_ / "frames/blur.0004.exr").metadata.at("vesper:motion_steps"), "2");
+}
+
 TEST_F(FarmAnimation, AVdbSequenceJobRendersFrameNFromFileN) {
   const auto config = write_config(10);
   // Three frames of a box of smoke, each denser than the last.
