@@ -309,6 +309,10 @@ TEST(Cryptomatte, RefusedForPartialRenders) {
     EXPECT_NE(std::string(e.what()).find("--partial"), std::string::npos) << e.what();
   }
   EXPECT_THROW(render(build_scene(d), o), std::invalid_argument);
+  RenderOptions zero;  // no ranks at all is a mistake too
+  zero.aovs = std::vector<Aov>{Aov::Cryptomatte};
+  zero.cryptomatte_depth = 0;
+  EXPECT_THROW(check_sampling_options(d.render, zero), std::invalid_argument);
   SceneDescription in_scene = d;  // render.aovs asks for it
   in_scene.render.aovs = {Aov::Cryptomatte};
   RenderOptions partial;
