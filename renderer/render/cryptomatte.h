@@ -1,5 +1,5 @@
 #pragma once
-// Cryptomatte id mattes (Psyop's specification 1.2, Friedman & Jones 2015):
+// Cryptomatte id mattes (Psyop's specification, Friedman & Jones 2015):
 // per pixel, the share of its camera samples whose first surface (the camera
 // ray's first hit; media ignored) is each shape, written as ranked
 // (id, coverage) pairs twice: by object (shape names) and by material.

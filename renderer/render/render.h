@@ -22,6 +22,9 @@ struct LayerSelection {
   bool alpha = false;  // also write <name>.A = 1 - camera-ray transmittance
 };
 
+// Most Cryptomatte ranks per type: layers 00 to 99.
+inline constexpr int kMaxCryptoDepth = 200;
+
 struct RenderOptions {
   int threads = 0;                       // 0 = all hardware threads
   std::optional<int> spp;                // overrides render.spp
@@ -54,7 +57,8 @@ struct RenderOptions {
   // rendering. For the regression batch's per-layer noise model.
   bool layer_variance = false;
   bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
-  // Ranks per Cryptomatte type (Aov::Cryptomatte): (depth + 1) / 2 RGBA layers each.
+  // Ranks per Cryptomatte type (Aov::Cryptomatte): (depth + 1) / 2 RGBA layers
+  // each, in [1, kMaxCryptoDepth] (std::invalid_argument otherwise).
   int cryptomatte_depth = 6;
   std::vector<LayerSelection> layers;  // path-selection layers, same pass as the beauty
   // Called from worker threads after each tile (must be thread-safe).

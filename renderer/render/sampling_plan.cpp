@@ -39,7 +39,11 @@ SamplingPlan plan_sampling(const RenderDesc& r, const RenderOptions& options) {
     bad("render.min_spp (--min-spp) " + std::to_string(*min_spp) +
         " is greater than render.max_spp (--max-spp) " + std::to_string(*max_spp));
   const std::vector<Aov>& aovs = options.aovs ? *options.aovs : r.aovs;
-  if (options.keep_sums && std::find(aovs.begin(), aovs.end(), Aov::Cryptomatte) != aovs.end())
+  const bool crypto = std::find(aovs.begin(), aovs.end(), Aov::Cryptomatte) != aovs.end();
+  if (crypto && (options.cryptomatte_depth < 1 || options.cryptomatte_depth > kMaxCryptoDepth))
+    bad("cryptomatte_depth must be in [1, " + std::to_string(kMaxCryptoDepth) + "], got " +
+        std::to_string(options.cryptomatte_depth));
+  if (options.keep_sums && crypto)
     bad("cryptomatte (render.aovs, --aov) cannot go into a partial render (--partial, or a farm "
         "job split into sample ranges): partials do not carry its per-shape sample counts; "
         "render the frame in one range");

@@ -268,6 +268,30 @@ TEST(Cryptomatte, SameForAnyThreadCountAndAdaptiveSampling) {
   EXPECT_GT(counts.size(), 1u);  // really adaptive
 }
 
+// The first surface the camera ray hits, whatever medium lies before it: a
+// thick fog in front of everything leaves the mattes bitwise unchanged.
+TEST(Cryptomatte, MediaBeforeTheSurfaceAreIgnored) {
+  SceneDescription clear = split_scene(64);
+  add_light(clear, PointLightDesc{{0, 0, 2}, Rgb(5.f)});
+  SceneDescription foggy = clear;
+  HomogeneousMediumDesc fog;
+  fog.sigma_s = Rgb(2.f);
+  fog.sigma_a = Rgb(0.5f);
+  MediumDesc& m = foggy.media.emplace_back();
+  m.name = "fog";
+  m.medium = fog;  // no bounds: the whole scene
+  const LayeredImage a = render_crypto(clear).image, b = render_crypto(foggy).image;
+  ASSERT_EQ(a.channels, b.channels);
+  EXPECT_NE(a.at(0, 0, 0), b.at(0, 0, 0));  // the fog does change the beauty
+  for (size_t c = 0; c < a.channel_count(); ++c) {
+    if (a.channels[c].rfind("Crypto", 0) != 0) continue;
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x)
+        ASSERT_EQ(std::bit_cast<uint32_t>(a.at(x, y, c)), std::bit_cast<uint32_t>(b.at(x, y, c)))
+            << a.channels[c] << " " << x << "," << y;
+  }
+}
+
 // Without the AOV: no Crypto channels, no cryptomatte/ attributes, and the
 // other channels are bitwise those of the render with it (it takes no samples).
 TEST(Cryptomatte, WithoutTheAovNothingIsWritten) {
@@ -309,6 +333,10 @@ TEST(Cryptomatte, RefusedForPartialRenders) {
     EXPECT_NE(std::string(e.what()).find("--partial"), std::string::npos) << e.what();
   }
   EXPECT_THROW(render(build_scene(d), o), std::invalid_argument);
+  RenderOptions zero;  // no ranks at all is a mistake too
+  zero.aovs = std::vector<Aov>{Aov::Cryptomatte};
+  zero.cryptomatte_depth = 0;
+  EXPECT_THROW(check_sampling_options(d.render, zero), std::invalid_argument);
   SceneDescription in_scene = d;  // render.aovs asks for it
   in_scene.render.aovs = {Aov::Cryptomatte};
   RenderOptions partial;
