@@ -14,6 +14,12 @@ struct ImageIoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A multi-part file whose parts do not fit together (read_exr_all_parts);
+// the message starts with the file's name.
+struct ExrPartsError : ImageIoError {
+  using ImageIoError::ImageIoError;
+};
+
 struct ExrWriteReport {
   // Half colour values beyond ±65504 or not finite, written as ±65504 (0 for
   // NaN); also the header's vesper:half_clamped and a warning in the log.
@@ -35,8 +41,8 @@ LayeredImage read_exr(const std::filesystem::path& path);
 // Reads every channel of every part as float, in one image: a part's
 // channels that carry no layer prefix are named `<part name>.<channel>`,
 // except in the first part (the default part, where the beauty lives) and
-// in a part named "rgba". Throws ImageIoError naming the file when two parts
-// give the same channel or when parts differ in size. Metadata: the first
+// in a part named "rgba". Throws ExrPartsError naming the file when two
+// parts give the same channel or when parts differ in size. Metadata: the first
 // part's.
 LayeredImage read_exr_all_parts(const std::filesystem::path& path);
 

@@ -40,11 +40,12 @@ void check_same_window(const OIIO::ImageSpec& first, const OIIO::ImageSpec& spec
   if (spec.x == first.x && spec.y == first.y && spec.width == first.width &&
       spec.height == first.height)
     return;
-  throw ImageIoError(file + ": part " + std::to_string(part) + " is " + std::to_string(spec.width) +
-                     "x" + std::to_string(spec.height) + " at (" + std::to_string(spec.x) + ", " +
-                     std::to_string(spec.y) + "), part 0 is " + std::to_string(first.width) + "x" +
-                     std::to_string(first.height) + " at (" + std::to_string(first.x) + ", " +
-                     std::to_string(first.y) + "): the parts must cover the same pixels");
+  throw ExrPartsError(file + ": part " + std::to_string(part) + " is " +
+                      std::to_string(spec.width) + "x" + std::to_string(spec.height) + " at (" +
+                      std::to_string(spec.x) + ", " + std::to_string(spec.y) + "), part 0 is " +
+                      std::to_string(first.width) + "x" + std::to_string(first.height) + " at (" +
+                      std::to_string(first.x) + ", " + std::to_string(first.y) +
+                      "): the parts must cover the same pixels");
 }
 
 // Interleaves the parts' pixels into one image's.
@@ -83,9 +84,9 @@ LayeredImage read_exr_all_parts(const std::filesystem::path& path) {
     for (const std::string& c : parts.back().channels) {
       const auto [it, fresh] = part_of.emplace(c, part);
       if (!fresh)
-        throw ImageIoError(file + ": parts " + std::to_string(it->second) + " and " +
-                           std::to_string(part) + " both give the channel '" + c +
-                           "'; a channel must come from one part");
+        throw ExrPartsError(file + ": parts " + std::to_string(it->second) + " and " +
+                            std::to_string(part) + " both give the channel '" + c +
+                            "'; a channel must come from one part");
       img.channels.push_back(c);
     }
   }

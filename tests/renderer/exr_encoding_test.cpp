@@ -138,7 +138,9 @@ TEST(ExrEncoding, EveryCompressionReadsBack) {
       for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
           const float want = img.at(x, y, c), got = back.at(x, y, bc);
-          if (!lossy) ASSERT_EQ(got, want) << name << " " << back.channels[bc];
+          if (!lossy) {
+            ASSERT_EQ(got, want) << name << " " << back.channels[bc];
+          }
           sq += (got - want) * (got - want);
           count += 1;
         }

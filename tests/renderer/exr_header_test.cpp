@@ -162,5 +162,54 @@ TEST(ExrHeader, AnAnimatedCameraWritesTheFramesMatrices) {
             img.metadata.at(key::kWorldToCamera));
 }
 
+// docs/scene-format.md, "Channel order": OpenEXR keeps channels sorted by
+// name; readers list the unlayered ones first (R, G, B, A, then the rest by
+// name), then each layer by name with its R, G, B, A first, then the rest.
+TEST(ExrHeader, ChannelsReadBackInTheDocumentedOrder) {
+  const TempDir dir("exr");
+  nlohmann::json doc = minimal_scene();
+  doc["render"] = {{"spp", 2}, {"aovs", {"variance", "normal", "emission", "depth", "albedo"}}};
+  doc["layers"] = {{"zfog", {{"paths", "surface"}}}, {"back", {{"paths", "all"}}}};
+  RenderOptions options;
+  options.layer_variance = true;
+  const LayeredImage img = render_frame(parse_scene(doc, "order.json"), options).image;
+  write_exr(img, dir / "o.exr");
+  EXPECT_EQ(read_exr(dir / "o.exr").channels, (std::vector<std::string>{"R",
+                                                                        "G",
+                                                                        "B",
+                                                                        "A",  //
+                                                                        "albedo.R",
+                                                                        "albedo.G",
+                                                                        "albedo.B",  //
+                                                                        "albedo.variance.R",
+                                                                        "albedo.variance.G",
+                                                                        "albedo.variance.B",  //
+                                                                        "back.R",
+                                                                        "back.G",
+                                                                        "back.B",  //
+                                                                        "back.variance.R",
+                                                                        "back.variance.G",
+                                                                        "back.variance.B",  //
+                                                                        "depth.Z",          //
+                                                                        "emission.R",
+                                                                        "emission.G",
+                                                                        "emission.B",  //
+                                                                        "emission.variance.R",
+                                                                        "emission.variance.G",
+                                                                        "emission.variance.B",  //
+                                                                        "normal.X",
+                                                                        "normal.Y",
+                                                                        "normal.Z",  //
+                                                                        "variance.R",
+                                                                        "variance.G",
+                                                                        "variance.B",  //
+                                                                        "zfog.R",
+                                                                        "zfog.G",
+                                                                        "zfog.B",  //
+                                                                        "zfog.variance.R",
+                                                                        "zfog.variance.G",
+                                                                        "zfog.variance.B"}));
+}
+
 }  // namespace
 }  // namespace vesper::test
