@@ -15,7 +15,7 @@
 namespace vesper {
 namespace {
 
-// A metadata value out of `names`, or `fallback` when absent.
+// The metadata value for `key`, one of `names`; the first (the default) when absent.
 template <size_t N>
 std::string_view encoding_choice(const LayeredImage& image, const char* key,
                                  const std::array<std::string_view, N>& names,
