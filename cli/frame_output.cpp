@@ -103,7 +103,10 @@ fs::path FrameOutput::path(std::optional<long> frame) const {
 }
 
 void FrameOutput::write(const LayeredImage& image, const fs::path& path) const {
-  if (format_ == FrameFormat::Exr) return write_exr(image, path);
+  if (format_ == FrameFormat::Exr) {
+    write_exr(image, path);  // logs any half clamping itself
+    return;
+  }
   if (format_ != FrameFormat::DisplayImage) throw std::logic_error("FrameOutput: not an image");
   RgbaImage beauty = extract_layer(image, "beauty", path.string());
   display_->apply_display(beauty);

@@ -120,6 +120,9 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
                 "Indirect sample clamp (biased, off by default): scale each sample's indirect "
                 "light down to at most this in its largest RGB component; overrides render.clamp")
       ->check(greater_than_zero());
+  r->add_flag("--half", o->half,
+              "Write colour channels as half floats (data channels such as depth, normal, "
+              "variance and spp stay float32); overrides film.pixel_type");
   r->add_flag("--layer-variance", o->layer_variance,
               "Also write <layer>.variance.R/G/B for every RGB AOV and layer (costs 192 bytes "
               "per pixel and layer while rendering)");

@@ -96,6 +96,7 @@ int render_one(const RenderCommandOptions& o) {
     if (o.frame) load.frame = double(*o.frame);
     desc = load_scene(o.scene, load);
     if (o.scale) scale_film(desc.film, *o.scale);
+    if (o.half) desc.film.pixel_type = ExrPixelType::Half;
     output = std::make_unique<FrameOutput>(o.output, o.partial);
     out_path = output->path(o.frame ? std::optional<long>(*o.frame) : std::nullopt);
   } catch (const std::invalid_argument& e) {  // --aov

@@ -78,10 +78,13 @@ LayeredImage read_input(const fs::path& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw CompError(path.string() + ": no such file");
   try {
-    LayeredImage img = read_exr(path);
+    // Every part of a multi-part file (Nuke's and Blender's layout).
+    LayeredImage img = read_exr_all_parts(path);
     if (img.width <= 0 || img.height <= 0 || img.channels.empty())
       throw CompError(path.string() + ": an empty image");
     return img;
+  } catch (const ExrPartsError& e) {
+    throw CompError(e.what());
   } catch (const ImageIoError& e) {
     throw CompError(path.string() + ": not a readable EXR (" + e.what() + ")");
   }
@@ -176,7 +179,8 @@ void write_graded_exr(const RgbaImage& canvas, const LayeredImage& first,
   exr.height = canvas.height;
   exr.channels = {"R", "G", "B", "A"};
   exr.pixels = canvas.pixels;
-  exr.metadata = first.metadata;
+  exr.metadata = first.metadata;  // its encoding too (half, codec): write_exr counts anew
+  exr.metadata.erase(metadata_key::kHalfClamped);
   exr.metadata[metadata_key::kCompRecipe] = recipe_label;
   exr.metadata[metadata_key::kCompColorspace] = "scene_linear (graded)";
   try {

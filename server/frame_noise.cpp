@@ -14,13 +14,18 @@
 namespace vesper {
 namespace {
 
-// An attribute as text whatever its type (vesper writes strings; a float would do too).
 std::string text_attribute(const OIIO::ImageSpec& spec, const char* key) {
   const OIIO::ParamValue* p = spec.find_attribute(key);
   return p ? p->get_string() : std::string();
 }
 
+// vesper writes figures as double attributes (older frames: as text); a
+// double's text from get_string() would lose digits, so it is read as is.
 std::optional<double> number_attribute(const OIIO::ImageSpec& spec, const char* key) {
+  const OIIO::ParamValue* p = spec.find_attribute(key);
+  if (p && p->type() == OIIO::TypeDesc::DOUBLE) return *static_cast<const double*>(p->data());
+  if (p && (p->type() == OIIO::TypeFloat || p->type() == OIIO::TypeInt))
+    return double(p->get_float());
   const std::string text = text_attribute(spec, key);
   double v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "renderer/output/metadata_keys.h"
+#include "renderer/output/metadata_text.h"
 
 namespace vesper {
 namespace {
@@ -200,9 +201,9 @@ NoiseSummary summarize_noise(const FilmSums& film) {
 
 void set_noise_metadata(std::map<std::string, std::string>& metadata, const FilmSums& film) {
   const NoiseSummary s = summarize_noise(film);
-  metadata[metadata_key::kSppMean] = std::to_string(s.mean_spp);
+  metadata[metadata_key::kSppMean] = metadata_number(s.mean_spp);
   if (streams_beauty(film))
-    metadata[metadata_key::kNoiseReached] = std::to_string(s.rms_relative_error);
+    metadata[metadata_key::kNoiseReached] = metadata_number(s.rms_relative_error);
 }
 
 }  // namespace vesper

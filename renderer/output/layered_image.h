@@ -1,7 +1,8 @@
 #pragma once
 // A float image with named channels in OpenEXR's `layer.channel` convention
 // (`R,G,B,A` for the beauty, `albedo.R`, `normal.X`, `depth.Z`, ...), plus
-// string metadata that ends up in the EXR header.
+// metadata as text that ends up in the EXR header (typed there by
+// write_exr: metadata_keys.h).
 #include <cstddef>
 #include <map>
 #include <string>

@@ -2,6 +2,8 @@
 // The `vesper:*` keys of an image's metadata (EXR header attributes): the one
 // place their names are spelled. README.md lists them for users.
 #include <array>
+#include <string_view>
+#include <utility>
 
 namespace vesper::metadata_key {
 
@@ -51,5 +53,51 @@ inline constexpr char kFrame[] = "vesper:frame";
 // The compositor's output: the recipe's label and the pixels' colour space.
 inline constexpr char kCompRecipe[] = "vesper:comp_recipe";
 inline constexpr char kCompColorspace[] = "vesper:comp_colorspace";
+
+// The film's EXR encoding (film.pixel_type / --half, film.compression), set
+// only when not the default (float, zip); write_exr() encodes the file so.
+inline constexpr char kPixelType[] = "vesper:pixel_type";
+inline constexpr char kCompression[] = "vesper:compression";
+// Values of half colour channels beyond ±65504 (or not finite) that
+// write_exr() clamped; only in a file that had any.
+inline constexpr char kHalfClamped[] = "vesper:half_clamped";
+
+// OpenEXR's standard camera attributes (M44f), for Nuke and friends: 16
+// numbers, row-major, in the metadata map (renderer/output/camera_matrices.h).
+inline constexpr char kWorldToCamera[] = "worldToCamera";
+inline constexpr char kWorldToNdc[] = "worldToNDC";
+
+// How write_exr() types a key's text in the EXR header, so that readers get
+// numbers (oiiotool shows `int`/`double`): counts as int (a count beyond a
+// 32-bit int stays text), seconds and figures as double, the camera as M44f.
+// The 64-bit seed stays text: EXR has no 64-bit integer attribute. Anything
+// not listed is text. read_exr() turns them back into the same text.
+enum class MetadataType { Text, Int, Double, Matrix44 };
+
+inline constexpr std::array<std::pair<std::string_view, MetadataType>, 17> kTypedKeys{{
+    {kSpp, MetadataType::Int},
+    {kSampleBegin, MetadataType::Int},
+    {kSampleEnd, MetadataType::Int},
+    {kNonfiniteSamples, MetadataType::Int},
+    {kSamplingPasses, MetadataType::Int},
+    {kPasses, MetadataType::Int},
+    {kFrame, MetadataType::Int},
+    {kHalfClamped, MetadataType::Int},
+    {kMotionSteps, MetadataType::Int},
+    {kRenderSeconds, MetadataType::Double},
+    {kNoiseTarget, MetadataType::Double},
+    {kTimeLimit, MetadataType::Double},
+    {kNoiseReached, MetadataType::Double},
+    {kSppMean, MetadataType::Double},
+    {kClamp, MetadataType::Double},
+    {kWorldToCamera, MetadataType::Matrix44},
+    {kWorldToNdc, MetadataType::Matrix44},
+}};
+
+constexpr MetadataType metadata_type(std::string_view key) {
+  for (const auto& [k, t] : kTypedKeys)
+    if (k == key) return t;
+  return MetadataType::Text;
+}
 
 }  // namespace vesper::metadata_key

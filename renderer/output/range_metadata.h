@@ -6,6 +6,7 @@
 #include <string>
 
 #include "renderer/output/metadata_keys.h"
+#include "renderer/output/metadata_text.h"
 
 namespace vesper {
 
@@ -27,7 +28,7 @@ inline void set_range_metadata(std::map<std::string, std::string>& metadata,
   metadata[key::kSampleEnd] = std::to_string(r.sample_end);
   metadata[key::kSeed] = std::to_string(r.seed);
   metadata[key::kRendererVersion] = r.renderer_version;
-  metadata[key::kRenderSeconds] = std::to_string(r.render_seconds);
+  metadata[key::kRenderSeconds] = metadata_number(r.render_seconds);
   metadata[key::kNonfiniteSamples] = std::to_string(r.nonfinite_samples);
 }
 

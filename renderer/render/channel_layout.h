@@ -1,7 +1,8 @@
 #pragma once
 // Which channels a render writes and where each value goes: the beauty
-// R,G,B,A, then the AOVs and the layers in the order they were asked for.
-// Internal to render/.
+// R,G,B,A, then the AOVs and the layers in the order they were asked for
+// (in memory; an EXR file lists them in OpenEXR's order, docs/scene-format.md
+// "Channel order"). Internal to render/.
 #include <string>
 #include <vector>
 

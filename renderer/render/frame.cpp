@@ -4,6 +4,8 @@
 #include <atomic>
 
 #include "renderer/output/metadata_keys.h"
+#include "renderer/output/metadata_text.h"
+#include "renderer/scene/camera_matrices.h"
 
 namespace vesper {
 namespace {
@@ -103,6 +105,22 @@ SceneDescription apply_variant(const SceneDescription& desc, const VariantDesc& 
   return d;
 }
 
+namespace {
+
+// What the EXR writer needs from the film and camera (metadata_keys.h).
+void set_film_metadata(std::map<std::string, std::string>& meta, const CameraDesc& camera,
+                       const FilmDesc& film) {
+  const CameraMatrices m = camera_matrices(camera, film);
+  meta[metadata_key::kWorldToCamera] = metadata_matrix(m.world_to_camera);
+  meta[metadata_key::kWorldToNdc] = metadata_matrix(m.world_to_ndc);
+  if (film.pixel_type != ExrPixelType::Float)
+    meta[metadata_key::kPixelType] = kExrPixelTypeNames[size_t(film.pixel_type)];
+  if (film.compression != ExrCompression::Zip)
+    meta[metadata_key::kCompression] = kExrCompressionNames[size_t(film.compression)];
+}
+
+}  // namespace
+
 FrameResult render_frame(const SceneDescription& desc, const RenderOptions& options) {
   std::vector<const LayerDesc*> variants;
   RenderOptions base = options;
@@ -162,9 +180,10 @@ FrameResult render_frame(const SceneDescription& desc, const RenderOptions& opti
     ++frame.passes;
   }
   auto& meta = frame.image.metadata;
-  meta[metadata_key::kRenderSeconds] = std::to_string(frame.stats.seconds);
+  meta[metadata_key::kRenderSeconds] = metadata_number(frame.stats.seconds);
   meta[metadata_key::kNonfiniteSamples] = std::to_string(frame.stats.nonfinite_samples);
   meta[metadata_key::kPasses] = std::to_string(frame.passes);
+  set_film_metadata(meta, desc.camera, desc.film);
   return frame;
 }
 

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <optional>
 
+#include "renderer/output/metadata_text.h"
 #include "renderer/output/range_metadata.h"
 #include "renderer/render/channel_layout.h"
 #include "renderer/render/pixel_sampler.h"
@@ -208,8 +209,8 @@ void check_pixel_samples(const RenderOptions& options, const SamplingPlan& plan,
 void set_sampling_metadata(std::map<std::string, std::string>& meta, const SamplingPlan& plan,
                            const RenderStats& stats, const FilmSums& film) {
   namespace key = metadata_key;
-  if (plan.noise_target) meta[key::kNoiseTarget] = std::to_string(*plan.noise_target);
-  if (plan.time_limit) meta[key::kTimeLimit] = std::to_string(*plan.time_limit);
+  if (plan.noise_target) meta[key::kNoiseTarget] = metadata_number(*plan.noise_target);
+  if (plan.time_limit) meta[key::kTimeLimit] = metadata_number(*plan.time_limit);
   if (!plan.multipass()) return;
   meta[key::kStopReason] = stop_reason_name(stats.stop_reason);
   meta[key::kSamplingPasses] = std::to_string(stats.sampling_passes);

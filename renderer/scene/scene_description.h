@@ -18,6 +18,7 @@
 #include "renderer/math/rgb.h"
 #include "renderer/math/transform.h"
 #include "renderer/math/vec.h"
+#include "renderer/output/exr_encoding.h"
 #include "renderer/volume/density_grid.h"
 
 namespace vesper {
@@ -34,6 +35,9 @@ enum class FilterType { Box, Gaussian };
 struct FilmDesc {
   int width = 256, height = 256;
   FilterType filter = FilterType::Box;
+  // The EXR's encoding (docs/scene-format.md, Film): half applies to colour channels.
+  ExrPixelType pixel_type = ExrPixelType::Float;
+  ExrCompression compression = ExrCompression::Zip;
 };
 
 // Standard AOVs (render.aovs). The seven light-transport AOVs from Emission on

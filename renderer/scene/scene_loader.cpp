@@ -64,12 +64,14 @@ namespace {
 
 FilmDesc parse_film(JsonReader node) {
   node.expect_object();
-  node.allow_keys({"width", "height", "filter"});
+  node.allow_keys({"width", "height", "filter", "pixel_type", "compression"});
   FilmDesc film;
   film.width = int(node.integer("width", 1, 65536));
   film.height = int(node.integer("height", 1, 65536));
   film.filter =
       node.enumeration("filter", 0, kFilters) == 0 ? FilterType::Box : FilterType::Gaussian;
+  film.pixel_type = ExrPixelType(node.enumeration("pixel_type", 0, kExrPixelTypeNames));
+  film.compression = ExrCompression(node.enumeration("compression", 0, kExrCompressionNames));
   return film;
 }
 

@@ -114,6 +114,30 @@ TEST_F(RenderCli, SampleRangesFromTheCommandLineMergeToTheFullRender) {
   EXPECT_LT(max_rel, 1e-6);
 }
 
+// --half as oiiotool sees it: half colour, float32 data channels, typed
+// metadata; partials rendered with it merge into the same half file.
+TEST_F(RenderCli, HalfWritesHalfColourChannelsAndTypedMetadata) {
+  const fs::path exr = dir_ / "half.exr", info = dir_ / "info.txt";
+  const std::string flags = " --spp 2 --seed 9 --aov albedo,depth --half -q";
+  ASSERT_EQ(run(kCornell + " -o " + exr.string() + flags).exit_code, 0);
+  const std::string cmd = "oiiotool --info -v " + exr.string() + " > " + info.string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string text = slurp(info);
+  for (const char* want : {"R (half)", "albedo.B (half)", "depth.Z (float)", "vesper:spp: 2\n",
+                           "vesper:seed: \"9\"", "vesper:pixel_type: \"half\"", "worldToNDC: "})
+    EXPECT_NE(text.find(want), std::string::npos) << want << " in\n" << text;
+
+  const fs::path a = dir_ / "a.vpartial", b = dir_ / "b.vpartial", merged = dir_ / "m.exr";
+  ASSERT_EQ(run(kCornell + " -o " + a.string() + flags + " --sample-end 1 --partial").exit_code, 0);
+  ASSERT_EQ(run(kCornell + " -o " + b.string() + flags + " --sample-begin 1 --partial").exit_code,
+            0);
+  const std::string merge = std::string(VESPER_BINARY) + " merge -q -o " + merged.string() + " " +
+                            a.string() + " " + b.string();
+  ASSERT_EQ(std::system(merge.c_str()), 0);
+  // Equal to the half render's values: the merged frame is half-encoded too.
+  EXPECT_EQ(vesper::read_exr(merged).pixels, vesper::read_exr(exr).pixels);
+}
+
 }  // namespace
 
 namespace {

@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 
+#include "renderer/output/exr_io.h"
 #include "server/frame_noise.h"
 #include "tests/server/server_fixture.h"
 
@@ -178,6 +179,23 @@ TEST(FrameNoise, ReadsTheHeaderAndNothingElse) {
   std::ofstream(dir / "junk") << "not an image";
   EXPECT_EQ(read_frame_noise(dir / "junk"), FrameNoise{});
   EXPECT_EQ(read_frame_noise(dir / "missing"), FrameNoise{});
+}
+
+// vesper writes the figures as double attributes: read to the last digit.
+TEST(FrameNoise, ReadsTypedAttributesExactly) {
+  const test::TempDir dir("server");
+  LayeredImage img;
+  img.width = img.height = 1;
+  img.channels = {"R", "G", "B"};
+  img.pixels = {0, 0, 0};
+  img.metadata = {{"vesper:noise_reached", "0.018712345678901234"},
+                  {"vesper:spp_mean", "41.25"},
+                  {"vesper:stop_reason", "noise_target"}};
+  write_exr(img, dir / "frame.exr");
+  const FrameNoise n = read_frame_noise(dir / "frame.exr");
+  EXPECT_EQ(n.noise_reached, 0.018712345678901234);
+  EXPECT_EQ(n.spp_mean, 41.25);
+  EXPECT_EQ(n.stop_reason, "noise_target");
 }
 
 }  // namespace
