@@ -117,8 +117,8 @@ void add_shapes(const SceneDescription& desc, const RenderSpace& space, SceneSur
                                       {}});
             add_steps<T>(s.steps, space, geometry.quads.back());
           } else if constexpr (std::is_same_v<T, SphereShapeDesc>) {
-            geometry.spheres.push_back({space.point(g.center), float(g.radius * space.inv_scale),
-                                        s.material, shape, {}});
+            geometry.spheres.push_back(
+                {space.point(g.center), float(g.radius * space.inv_scale), s.material, shape, {}});
             add_steps<T>(s.steps, space, geometry.spheres.back());
           } else {
             AccelMesh m;

@@ -144,6 +144,17 @@ TEST(MotionBlur, AMovingEdgeIsTheTimeAverageOfItsCoverage) {
   EXPECT_EQ(rejected, 0) << log;
 }
 
+// Pixels whose means reject the edge swept from x = -3 to 0 over the shutter.
+int rejected_against_the_sweep(const Scene& scene, std::string& log) {
+  return rejected_pixels(
+      scene, 1.0,
+      [](int i) {
+        const auto [x0, x1] = pixel_span(i, 16, 4.0);
+        return mean_left_fraction(x0, x1, -3.0, 0.0);
+      },
+      log);
+}
+
 // The same edge from a deforming mesh: its quad moves as above while a
 // triangle of the same mesh, behind the camera, is stretched another way.
 // Not an affine motion: the mesh keeps vertex time steps, not an instance.
@@ -161,13 +172,7 @@ TEST(MotionBlur, ADeformingMeshBlursLikeTheMovingQuad) {
   ASSERT_EQ(scene.accel->geometry().meshes.size(), 1u);
   EXPECT_FALSE(rigid_motion(scene.accel->geometry().meshes[0]));
   std::string log;
-  const int rejected = rejected_pixels(
-      scene, 1.0,
-      [](int i) {
-        const auto [x0, x1] = pixel_span(i, 16, 4.0);
-        return mean_left_fraction(x0, x1, -3.0, 0.0);
-      },
-      log);
+  const int rejected = rejected_against_the_sweep(scene, log);
   EXPECT_EQ(rejected, 0) << log;
 }
 
@@ -198,13 +203,7 @@ TEST(MotionBlur, AMovingCameraBlursLikeAMovingEdge) {
   const Scene scene = load(doc);
   ASSERT_EQ(scene.camera_steps.size(), 2u);
   std::string log;
-  const int rejected = rejected_pixels(
-      scene, 1.0,
-      [](int i) {
-        const auto [x0, x1] = pixel_span(i, 16, 4.0);
-        return mean_left_fraction(x0, x1, -3.0, 0.0);
-      },
-      log);
+  const int rejected = rejected_against_the_sweep(scene, log);
   EXPECT_EQ(rejected, 0) << log;
 }
 
@@ -214,13 +213,7 @@ TEST(MotionBlur, TheEdgeTestRejectsAWrongTime) {
   const Scene scene = load(moving_black_quad({0, 0}));
   ASSERT_FALSE(scene.motion_blur);
   std::string log;
-  const int rejected = rejected_pixels(
-      scene, 1.0,
-      [](int i) {
-        const auto [x0, x1] = pixel_span(i, 16, 4.0);
-        return mean_left_fraction(x0, x1, -3.0, 0.0);
-      },
-      log);
+  const int rejected = rejected_against_the_sweep(scene, log);
   EXPECT_GE(rejected, 4) << log;
 }
 
