@@ -190,8 +190,10 @@ int render_frames(const RenderCommandOptions& o) {
     one.frames.reset();
     one.frame = frames[i];
     if (const int rc = render_one(one); rc != 0) {
-      spdlog::error("frame {} ({} of {}) failed; the {} frames before it are written", frames[i],
-                    i + 1, frames.size(), i);
+      const std::string written = i == 0   ? "no frame was written"
+                                  : i == 1 ? "the frame before it is written"
+                                           : fmt::format("the {} frames before it are written", i);
+      spdlog::error("frame {} ({} of {}) failed; {}", frames[i], i + 1, frames.size(), written);
       return rc;
     }
     if (!o.quiet)
