@@ -146,7 +146,8 @@ int render_one(const RenderCommandOptions& o) {
 
   try {
     if (o.partial)
-      write_partial(make_partial(result.image, std::move(result.film), spp, out_path.string()),
+      write_partial(make_partial(result.image, std::move(result.film), spp, out_path.string(),
+                                 std::move(result.crypto)),
                     out_path);
     else
       output->write(result.image, out_path);
