@@ -14,6 +14,7 @@
 #include "renderer/render/cryptomatte.h"
 #include "renderer/render/frame.h"
 #include "renderer/scene/scene_loader.h"
+#include "tests/common/crypto_header.h"
 #include "tests/common/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -110,6 +111,9 @@ TEST_F(PartialCryptomatte, TwoRangesMergeBitwiseToTheSingleRender) {
   ASSERT_EQ(a.channels, b.channels);
   EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0);
   EXPECT_EQ(without_time(a.metadata), without_time(b.metadata));
+  const auto header = crypto_header(dir_ / "single.exr");
+  EXPECT_EQ(manifest_count(header), 2);
+  EXPECT_EQ(crypto_header(dir_ / "merged.exr"), header);
 }
 
 // The ranking is of the summed counts, not of each range's: a merge of
