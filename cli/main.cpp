@@ -110,7 +110,7 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
       "Extra AOVs, comma-separated: albedo, normal, depth, emission, diffuse_direct, "
       "diffuse_indirect, specular_direct, specular_indirect, volume_direct, volume_indirect, "
       "variance (of the pixel mean), spp (samples taken), cryptomatte (id mattes by object "
-      "and material; not with --partial)");
+      "and material)");
   add_sampling_flags(r, o->sampling);
   r->add_option("--scale", o->scale,
                 "Render the film at this fraction of its size (e.g. 0.25 for previews and "

@@ -85,6 +85,13 @@ void log_sampling(const std::map<std::string, std::string>& meta) {
 }
 
 // One frame (or the scene without a frame): what `vesper render` did before --frames.
+// The frame as a partial render: its exact sums and, with Cryptomatte, its counts by id.
+void write_partial_frame(FrameResult& frame, int spp, const std::filesystem::path& path) {
+  write_partial(
+      make_partial(frame.image, std::move(frame.film), spp, path.string(), std::move(frame.crypto)),
+      path);
+}
+
 int render_one(const RenderCommandOptions& o) {
   RenderOptions ro;
   SceneDescription desc;
@@ -146,8 +153,7 @@ int render_one(const RenderCommandOptions& o) {
 
   try {
     if (o.partial)
-      write_partial(make_partial(result.image, std::move(result.film), spp, out_path.string()),
-                    out_path);
+      write_partial_frame(result, spp, out_path);
     else
       output->write(result.image, out_path);
   } catch (const std::exception& e) {

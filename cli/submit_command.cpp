@@ -17,7 +17,6 @@
 #include "protocol/fields.h"
 #include "protocol/job_messages.h"
 #include "protocol/paths.h"
-#include "renderer/scene/aov_names.h"
 #include "renderer/scene/scene_loader.h"
 #include "server/requests.h"
 
@@ -73,29 +72,6 @@ void apply_sampling_flags(BudgetRequest& b, const SamplingFlags& flags) {
   if (flags.time_limit) b.budget.time_limit = flags.time_limit;
 }
 
-namespace {
-
-// Partials carry no Cryptomatte coverage (the renderer refuses it): a job
-// asking for it, through its AOVs or the scene's render.aovs, renders each
-// frame as one task. (The server checks the job's AOVs; it does not read scenes.)
-void check_cryptomatte_split(const JobRequest& r, const RenderDesc& render) {
-  const std::string crypto(kAovNames[size_t(Aov::Cryptomatte)]);
-  const bool asked =
-      r.overrides.aovs.empty()
-          ? std::find(render.aovs.begin(), render.aovs.end(), Aov::Cryptomatte) != render.aovs.end()
-          : std::find(r.overrides.aovs.begin(), r.overrides.aovs.end(), crypto) !=
-                r.overrides.aovs.end();
-  const int spp = r.sampling.frame_spp(r.spp);
-  if (asked && r.samples_per_task > 0 && r.samples_per_task < spp)
-    throw JobRequestError(
-        "--split (samples_per_task in a job file): the cryptomatte "
-        "AOV cannot be split into sample ranges (partial renders do not carry "
-        "it); leave it out or make it at least the spp (" +
-        std::to_string(spp) + ")");
-}
-
-}  // namespace
-
 JobRequest settle_job_request(JobRequest r, int first_frame) {
   const RenderDesc render = load_scene(r.scene, {.frame = double(first_frame)}).render;
   if (r.spp <= 0) r.spp = render.spp;
@@ -118,7 +94,6 @@ JobRequest settle_job_request(JobRequest r, int first_frame) {
     throw JobRequestError(flag + " (" + why->field + " in a job file, render." + why->field +
                           " in the scene): " + why->message);
   }
-  check_cryptomatte_split(r, render);
   return r;
 }
 

@@ -140,18 +140,6 @@ std::vector<int> read_frames(const JsonReader& frames) {
   return out;
 }
 
-// Cryptomatte's per-shape counts do not travel in partials (the renderer
-// refuses them): a job asking for it renders each frame as one task.
-void check_cryptomatte_split(JsonReader& o, const JobSpec& spec) {
-  const auto& aovs = spec.overrides.aovs;
-  if (spec.samples_per_task > 0 && spec.samples_per_task < spec.spp &&
-      std::find(aovs.begin(), aovs.end(), kAovNames[size_t(Aov::Cryptomatte)]) != aovs.end())
-    o.fail_key(f::kSamplesPerTask,
-               "the cryptomatte AOV cannot be split into sample ranges (its coverage is not "
-               "in partial renders): leave samples_per_task out, or at least the spp (" +
-                   std::to_string(spec.spp) + ")");
-}
-
 JobSpec read_job(JsonReader& o) {
   o.allow_keys({f::kName, f::kScene, f::kFrames, f::kSpp, f::kSamplesPerTask, f::kPriority,
                 f::kMaxAttempts, f::kAssets, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp, f::kTimeLimit,
@@ -170,7 +158,6 @@ JobSpec read_job(JsonReader& o) {
   spec.spp = budget.frame_spp(spec.spp);
   spec.budget = budget.budget;
   spec.overrides = read_render_overrides(o);
-  check_cryptomatte_split(o, spec);
   if (const auto v = o.optional_child(f::kTaskTimeout))
     spec.task_timeout = v->as_number(kTaskTimeoutRange);
   const int64_t n = task_count(spec);

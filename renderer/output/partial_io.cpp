@@ -16,6 +16,7 @@
 #include "common/json_parse.h"
 #include "common/json_reader.h"
 #include "renderer/output/partial_checks.h"
+#include "renderer/output/partial_crypto.h"
 #include "renderer/output/range_metadata.h"
 #include "renderer/sampling/sample_streams.h"
 
@@ -35,6 +36,9 @@ constexpr size_t kStreams = size_t(kSampleStreams);
 constexpr const char* kEncoding = "int128-le-q64";
 constexpr size_t kMaxHeaderBytes = size_t(16) << 20;
 constexpr int kMaxDimension = 1 << 16;
+// zlib's deflate expands at most ~1032:1: a header promising more is corrupt
+// (and would otherwise make us allocate what it claims).
+constexpr uint64_t kMaxZlibRatio = 1032;
 
 // Metadata keys that render() writes and the partial carries as its own fields.
 bool is_range_key(const std::string& k) {
@@ -168,7 +172,7 @@ void parse_sample_range(JsonReader& h, Partial& p) {
 // The header line (docs/partial-format.md): everything but the sums. Throws
 // JsonError naming `label` and the JSON path of the offending key.
 Partial parse_header(const json& j, const std::string& label, SumsLayout& sums, bool& version1,
-                     std::vector<std::string>& streamed) {
+                     std::vector<std::string>& streamed, uint64_t& crypto_bytes) {
   JsonReader h(j, label, "");
   h.expect_object();
   // The format decides what the rest means, so it is checked first.
@@ -179,7 +183,7 @@ Partial parse_header(const json& j, const std::string& label, SumsLayout& sums, 
                 " and " + kFormatV1 + ")");
   h.allow_keys({"format", "width", "height", "channels", "sample_begin", "sample_end", "frame_spp",
                 "seed", "scene_hash", "renderer_version", "nonfinite_samples", "render_seconds",
-                "metadata", "sums", "streams", "stream_channels"});
+                "metadata", "sums", "streams", "stream_channels", "cryptomatte"});
   if (!version1) {
     const JsonReader streams = h.child("streams");
     if (streams.as_integer(1, 1 << 16) != int64_t(kStreams))
@@ -201,6 +205,8 @@ Partial parse_header(const json& j, const std::string& label, SumsLayout& sums, 
   p.render_seconds = h.number("render_seconds");
   parse_metadata(h.object("metadata"), p);
   sums = parse_sums_layout(h.object("sums"));
+  if (h.has("cryptomatte"))
+    p.crypto = partial_crypto::parse_header(h.object("cryptomatte"), p, crypto_bytes);
   return p;
 }
 
@@ -237,6 +243,10 @@ std::vector<unsigned char> read_compressed_sums(std::ifstream& f, const std::str
 
 std::vector<unsigned char> decompress_sums(const std::vector<unsigned char>& compressed,
                                            const SumsLayout& layout, const std::string& src) {
+  if (layout.bytes > uint64_t(compressed.size()) * kMaxZlibRatio + 1024)
+    fail(src, "corrupt: " + std::to_string(compressed.size()) +
+                  " compressed bytes cannot hold the " + std::to_string(layout.bytes) +
+                  " bytes the header promises");
   std::vector<unsigned char> raw(layout.bytes);
   uLongf raw_size = uLongf(layout.bytes);
   const int zr = uncompress(raw.data(), &raw_size, compressed.data(), uLong(compressed.size()));
@@ -249,7 +259,8 @@ std::vector<unsigned char> decompress_sums(const std::vector<unsigned char>& com
 }
 
 // The header and the compressed sums of one partial.
-std::string header_line(const Partial& p, size_t raw_bytes, size_t compressed_bytes, uint32_t crc) {
+std::string header_line(const Partial& p, size_t raw_bytes, size_t compressed_bytes, uint32_t crc,
+                        size_t crypto_bytes) {
   json h;
   h["format"] = kFormat;
   h["width"] = p.width;
@@ -268,6 +279,7 @@ std::string header_line(const Partial& p, size_t raw_bytes, size_t compressed_by
   std::vector<std::string> streamed;
   for (int c : p.streamed) streamed.push_back(p.channels[size_t(c)]);
   h["stream_channels"] = streamed;
+  if (p.crypto) h["cryptomatte"] = partial_crypto::header(*p.crypto, crypto_bytes);
   h["sums"] = {{"encoding", kEncoding},
                {"compression", "zlib"},
                {"bytes", raw_bytes},
@@ -290,7 +302,8 @@ FilmSums Partial::film() const {
   return f;
 }
 
-Partial make_partial(const LayeredImage& image, FilmSums film, int frame_spp, std::string source) {
+Partial make_partial(const LayeredImage& image, FilmSums film, int frame_spp, std::string source,
+                     std::optional<CryptoFilm> crypto) {
   Partial p;
   p.source = std::move(source);
   p.width = image.width;
@@ -315,28 +328,44 @@ Partial make_partial(const LayeredImage& image, FilmSums film, int frame_spp, st
   p.renderer_version = key(metadata_key::kRendererVersion);
   for (const auto& [k, v] : image.metadata)
     if (!is_range_key(k)) p.metadata[k] = v;
-  if (film.channels != image.channels || film.width != image.width || film.height != image.height)
+  std::vector<std::string> channels = film.channels;
+  if (crypto && crypto->position <= channels.size()) {
+    const std::vector<std::string> names = crypto_channel_names(*crypto);
+    channels.insert(channels.begin() + std::ptrdiff_t(crypto->position), names.begin(),
+                    names.end());
+  }
+  if (channels != image.channels || film.width != image.width || film.height != image.height)
     fail(p.source, "the film's sums are not of this image (channels or size differ)");
+  p.channels = film.channels;
+  p.crypto = std::move(crypto);
   p.sums = std::move(film.sums);
   p.streamed = std::move(film.streamed);
   p.stream_sums = std::move(film.stream_sums);
   p.counts = std::move(film.counts);
   check_sums_size(p);
+  partial_crypto::check(p);
   return p;
 }
 
 void write_partial(const Partial& p, const fs::path& path) {
   check_sums_size(p);
+  partial_crypto::check(p);
   std::vector<unsigned char> raw = encode_sums(p.sums);
   const std::vector<unsigned char> streams = encode_sums(p.stream_sums);
   raw.insert(raw.end(), streams.begin(), streams.end());
   append_counts(raw, p.counts);
+  const size_t fixed_bytes = raw.size();
+  if (p.crypto) {
+    const std::vector<unsigned char> crypto = partial_crypto::encode(*p.crypto);
+    raw.insert(raw.end(), crypto.begin(), crypto.end());
+  }
   uLongf compressed_size = compressBound(uLong(raw.size()));
   std::vector<unsigned char> compressed(compressed_size);
   if (compress2(compressed.data(), &compressed_size, raw.data(), uLong(raw.size()), 6) != Z_OK)
     throw PartialError("cannot write " + path.string() + ": zlib compression failed");
   compressed.resize(compressed_size);
-  const std::string header = header_line(p, raw.size(), compressed.size(), crc_of(raw));
+  const std::string header =
+      header_line(p, raw.size(), compressed.size(), crc_of(raw), raw.size() - fixed_bytes);
 
   const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
   {
@@ -371,35 +400,39 @@ Partial read_partial(const fs::path& path) {
   SumsLayout layout;
   bool version1 = false;
   std::vector<std::string> streamed;
+  uint64_t crypto_bytes = 0;
   try {
     const std::string label = src + " header";
-    p = parse_header(parse_json(line, label), label, layout, version1, streamed);
+    p = parse_header(parse_json(line, label), label, layout, version1, streamed, crypto_bytes);
   } catch (const JsonError& e) {
     throw PartialError(e.what());
   }
   p.source = src;
   p.streamed = streamed_indices(p, streamed);
   const size_t count = sum_count(p);
-  const size_t expected = version1 ? count * 16 : body_bytes(p);
+  const size_t fixed = version1 ? count * 16 : body_bytes(p);
+  const size_t expected = fixed + size_t(crypto_bytes);
   if (layout.bytes != expected)
-    fail(src, "size mismatch: header says " + std::to_string(layout.bytes) +
-                  " bytes of sums, but " + std::to_string(p.width) + "x" +
-                  std::to_string(p.height) + " pixels x " + std::to_string(p.channels.size()) +
-                  " channels" +
-                  (version1 ? ""
-                            : " with " + std::to_string(p.streamed.size()) +
-                                  " streamed channels and counts") +
-                  " make " + std::to_string(expected));
+    fail(src,
+         "size mismatch: header says " + std::to_string(layout.bytes) + " bytes of sums, but " +
+             std::to_string(p.width) + "x" + std::to_string(p.height) + " pixels x " +
+             std::to_string(p.channels.size()) + " channels" +
+             (version1 ? ""
+                       : " with " + std::to_string(p.streamed.size()) +
+                             " streamed channels and counts") +
+             (p.crypto ? " and " + std::to_string(crypto_bytes) + " of Cryptomatte counts" : "") +
+             " make " + std::to_string(expected));
   const std::vector<unsigned char> raw =
       decompress_sums(read_compressed_sums(f, src, layout.compressed_bytes), layout, src);
   p.sums = decode_sums(raw.data(), count);
   if (version1) {
     p.counts = uniform_counts(p);
-    return p;
+  } else {
+    const size_t streams = pixel_count(p) * kStreams * p.streamed.size();
+    p.stream_sums = decode_sums(raw.data() + count * 16, streams);
+    p.counts = decode_counts(raw.data() + (count + streams) * 16, pixel_count(p) * kStreams);
   }
-  const size_t streams = pixel_count(p) * kStreams * p.streamed.size();
-  p.stream_sums = decode_sums(raw.data() + count * 16, streams);
-  p.counts = decode_counts(raw.data() + (count + streams) * 16, pixel_count(p) * kStreams);
+  if (p.crypto) partial_crypto::decode(raw.data() + fixed, size_t(crypto_bytes), p, *p.crypto);
   return p;
 }
 

@@ -5,10 +5,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "renderer/output/crypto_film.h"
 #include "renderer/output/exact_sum.h"
 #include "renderer/output/film_sums.h"
 #include "renderer/output/layered_image.h"
@@ -40,15 +42,19 @@ struct Partial {
   std::vector<int> streamed;
   std::vector<ExactSum> stream_sums;
   std::vector<uint32_t> counts;
+  // With the cryptomatte AOV: per pixel, the samples and their counts by id,
+  // unranked (the Crypto channels are not among `channels`: a merge forms them).
+  std::optional<CryptoFilm> crypto;
 
   FilmSums film() const;  // the sums as a film (copies)
 };
 
 // A partial from a frame rendered with RenderOptions::keep_sums (the image's
-// metadata gives the range, seed, scene hash, ...). Throws PartialError if
+// metadata gives the range, seed, scene hash, ...; `crypto` is the render's
+// Cryptomatte film, whose channels the image holds). Throws PartialError if
 // the metadata lacks a key render() writes or the sums do not match the image.
 Partial make_partial(const LayeredImage& image, FilmSums film, int frame_spp,
-                     std::string source = "render");
+                     std::string source = "render", std::optional<CryptoFilm> crypto = {});
 
 // Writes atomically (temporary file beside `path`, then rename).
 void write_partial(const Partial& partial, const std::filesystem::path& path);

@@ -1,9 +1,11 @@
 // merge_partials(): the exact union of partial renders of one frame.
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <set>
 
 #include "renderer/output/partial_checks.h"
+#include "renderer/output/partial_crypto.h"
 #include "renderer/output/partial_io.h"
 #include "renderer/output/range_metadata.h"
 
@@ -16,6 +18,21 @@ using namespace partial_checks;
 bool is_per_range_figure(const std::string& k) {
   const auto& keys = metadata_key::kPerRangeFigures;
   return std::any_of(keys.begin(), keys.end(), [&](const char* r) { return k == r; });
+}
+
+// Both carry Cryptomatte counts of the same depth, types and place, or neither does.
+void check_same_crypto(const Partial& p, const Partial& ref) {
+  auto text = [](const Partial& x) {
+    if (!x.crypto) return std::string("none");
+    std::string types;
+    for (const std::string& t : x.crypto->types) types += (types.empty() ? "" : ",") + t;
+    return types + " of depth " + std::to_string(x.crypto->depth) + " after channel " +
+           std::to_string(x.crypto->position);
+  };
+  const std::string mine = text(p), theirs = text(ref);
+  if (mine != theirs)
+    fail(p.source, "Cryptomatte " + mine + " differs from " + ref.source + "'s " + theirs +
+                       ": not partials of one frame");
 }
 
 // `p` must be a partial of the same frame as `ref`; the error names both.
@@ -35,6 +52,7 @@ void check_same_frame(const Partial& p, const Partial& ref) {
     };
     differ("channel list", join(p.channels), join(ref.channels));
   }
+  check_same_crypto(p, ref);
   if (p.seed != ref.seed) differ("seed", std::to_string(p.seed), std::to_string(ref.seed));
   if (p.scene_hash != ref.scene_hash)
     differ("scene hash", p.scene_hash, ref.scene_hash + " (a different scene)");
@@ -85,6 +103,7 @@ LayeredImage merge_partials(const std::vector<Partial>& parts) {
   const Partial& ref = parts.front();
   for (const Partial& p : parts) {
     check_sums_size(p);
+    partial_crypto::check(p);
     if (p.sample_end <= p.sample_begin) fail(p.source, "empty sample range " + range_text(p));
     if (&p != &ref) check_same_frame(p, ref);
   }
@@ -97,6 +116,7 @@ LayeredImage merge_partials(const std::vector<Partial>& parts) {
                        std::to_string(kMaxExactSamples) + " fit the exact sums");
 
   FilmSums total = ref.film();
+  std::optional<CryptoFilm> crypto = ref.crypto;
   uint64_t nonfinite = ref.nonfinite_samples;
   double seconds = ref.render_seconds;
   std::set<std::string> stop_reasons;
@@ -109,11 +129,13 @@ LayeredImage merge_partials(const std::vector<Partial>& parts) {
       fail(p.source, "streamed channels (for the variance) differ from " + ref.source +
                          "'s: not partials of one frame");
     total.add(p.film());
+    if (crypto) crypto->add(*p.crypto);
     nonfinite += p.nonfinite_samples;
     seconds += p.render_seconds;
   }
 
   LayeredImage img = resolve_image(total);
+  if (crypto) append_crypto_channels(img, *crypto);  // as render() does
   img.metadata = ref.metadata;
   set_range_metadata(img.metadata, {.scene_hash = ref.scene_hash,
                                     .renderer_version = ref.renderer_version,

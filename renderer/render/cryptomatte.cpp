@@ -1,7 +1,6 @@
 #include "renderer/render/cryptomatte.h"
 
 #include <algorithm>
-#include <bit>
 #include <nlohmann/json.hpp>
 
 #include "renderer/output/cryptomatte_id.h"
@@ -56,50 +55,27 @@ void add_metadata(std::map<std::string, std::string>& meta, const CryptoType& t)
   meta[prefix + "manifest"] = manifest.dump();
 }
 
-std::vector<std::string> channel_names(const std::string& type, int depth) {
-  static constexpr const char* kRgba[] = {".R", ".G", ".B", ".A"};
-  std::vector<std::string> names;
-  for (int layer = 0; layer < (depth + 1) / 2; ++layer) {
-    const std::string number = (layer < 10 ? "0" : "") + std::to_string(layer);
-    for (const char* c : kRgba) names.push_back(type + number + c);
-  }
-  return names;
-}
-
 }  // namespace
 
-CryptoIdCounts rank_crypto_ids(CryptoIdCounts counts, int depth) {
-  std::sort(counts.begin(), counts.end(), [](const auto& a, const auto& b) {
-    return a.second != b.second ? a.second > b.second : a.first < b.first;
-  });
-  if (counts.size() > size_t(std::max(depth, 0))) counts.resize(size_t(std::max(depth, 0)));
-  return counts;
-}
-
-void append_cryptomatte(LayeredImage& image, const Scene& scene, const CryptoCounts& counts,
-                        int depth) {
+CryptoFilm append_cryptomatte(LayeredImage& image, const Scene& scene, const CryptoCounts& counts,
+                              int depth) {
   const std::vector<CryptoType> types = crypto_types(scene);
-  const size_t per_type = 4 * size_t((depth + 1) / 2);
-  const size_t nd = image.channel_count(), n = nd + types.size() * per_type;
+  CryptoFilm film;
+  film.depth = depth;
+  film.position = image.channel_count();
   const size_t pixels = size_t(image.width) * size_t(image.height);
-  std::vector<float> merged(pixels * n, 0.f);
+  film.totals.resize(pixels);
+  film.ids.reserve(pixels * types.size());
   for (size_t p = 0; p < pixels; ++p) {
-    std::copy_n(&image.pixels[p * nd], nd, &merged[p * n]);
-    const double total = std::max<double>(counts.total(p), 1);
-    for (size_t t = 0; t < types.size(); ++t) {
-      float* out = &merged[p * n + nd + t * per_type];
-      for (const auto& [bits, count] :
-           rank_crypto_ids(id_counts(types[t], counts.shapes(p)), depth)) {
-        *out++ = std::bit_cast<float>(bits);
-        *out++ = float(double(count) / total);
-      }
-    }
+    film.totals[p] = counts.total(p);
+    for (const CryptoType& t : types) film.ids.push_back(id_counts(t, counts.shapes(p)));
   }
-  image.pixels = std::move(merged);
   for (const CryptoType& t : types) {
-    for (std::string& c : channel_names(t.name, depth)) image.channels.push_back(std::move(c));
+    film.types.push_back(t.name);
     add_metadata(image.metadata, t);
   }
+  append_crypto_channels(image, film);
+  return film;
 }
 
 }  // namespace vesper

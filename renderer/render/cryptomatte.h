@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "renderer/output/crypto_film.h"
 #include "renderer/output/layered_image.h"
 #include "renderer/scene/scene.h"
 
@@ -49,18 +50,12 @@ class CryptoCounts {
   std::vector<uint32_t> totals_;
 };
 
-// (id bits, sample count) pairs of one pixel.
-using CryptoIdCounts = std::vector<std::pair<uint32_t, uint32_t>>;
-
-// The `depth` pairs of largest count, by count descending, ties by id bits
-// ascending (a fixed order, whatever order the ids arrived in).
-CryptoIdCounts rank_crypto_ids(CryptoIdCounts counts, int depth);
-
 // Appends CryptoObject00.R/G/B/A ... and CryptoMaterial00.R/G/B/A ...
 // ((depth + 1) / 2 layers each: id rank 2k, its coverage, id rank 2k+1, its
 // coverage) and their header attributes cryptomatte/<key>/name, hash,
-// conversion, manifest to `image`.
-void append_cryptomatte(LayeredImage& image, const Scene& scene, const CryptoCounts& counts,
-                        int depth = kCryptoDefaultDepth);
+// conversion, manifest to `image`. Returns the unranked counts by id, which a
+// partial render carries so that a merge ranks them as this render did.
+CryptoFilm append_cryptomatte(LayeredImage& image, const Scene& scene, const CryptoCounts& counts,
+                              int depth = kCryptoDefaultDepth);
 
 }  // namespace vesper

@@ -146,6 +146,7 @@ FrameResult render_frame(const SceneDescription& desc, const RenderOptions& opti
   frame.image = std::move(beauty.image);
   frame.stats = beauty.stats;
   frame.film = std::move(beauty.film);
+  frame.crypto = std::move(beauty.crypto);
   // With adaptive sampling the variant layers take the beauty's per-pixel
   // counts, so that every layer of the frame averages the same samples.
   // (An adaptive render always has the spp channel; a float holds counts exactly.)

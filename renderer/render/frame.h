@@ -14,6 +14,7 @@ struct FrameResult {
   // With RenderOptions::keep_sums: the exact film state of every channel of
   // `image` (same layout and channel order, see RenderResult::film).
   FilmSums film;
+  std::optional<CryptoFilm> crypto;  // RenderResult::crypto of the beauty pass
 };
 
 // `options.layers` is ignored: the layers come from desc.layers. Progress is

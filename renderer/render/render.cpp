@@ -286,7 +286,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     img.pixels = resolve_image(out.film).pixels;
   }
   if (options.on_progress) options.on_progress(size_t(most), size_t(most));
-  if (crypto) append_cryptomatte(img, scene, *crypto, options.cryptomatte_depth);
+  if (crypto) {
+    CryptoFilm film = append_cryptomatte(img, scene, *crypto, options.cryptomatte_depth);
+    if (options.keep_sums) out.crypto = std::move(film);
+  }
 
   out.stats.seconds = seconds_since(t0);
   out.stats.camera_samples = counts.camera_samples;

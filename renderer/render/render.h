@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "renderer/output/crypto_film.h"
 #include "renderer/output/exact_sum.h"
 #include "renderer/output/film_sums.h"
 #include "renderer/output/layered_image.h"
@@ -84,6 +85,8 @@ struct RenderResult {
   // With RenderOptions::keep_sums: the exact film state (sums laid out like
   // image.pixels; resolve_image(film) == image.pixels). Empty otherwise.
   FilmSums film;
+  // With keep_sums and the cryptomatte AOV: its unranked counts (a partial carries them).
+  std::optional<CryptoFilm> crypto;
 };
 
 RenderResult render(const Scene& scene, const RenderOptions& options = {});

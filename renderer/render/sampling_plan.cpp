@@ -43,10 +43,6 @@ SamplingPlan plan_sampling(const RenderDesc& r, const RenderOptions& options) {
   if (crypto && (options.cryptomatte_depth < 1 || options.cryptomatte_depth > kMaxCryptoDepth))
     bad("cryptomatte_depth must be in [1, " + std::to_string(kMaxCryptoDepth) + "], got " +
         std::to_string(options.cryptomatte_depth));
-  if (options.keep_sums && crypto)
-    bad("cryptomatte (render.aovs, --aov) cannot go into a partial render (--partial, or a farm "
-        "job split into sample ranges): partials do not carry its per-shape sample counts; "
-        "render the frame in one range");
   plan.begin = options.sample_begin;
   plan.end = options.sample_end.value_or(frame_spp(r, options));
   plan.cap = std::max(0, plan.end - plan.begin);

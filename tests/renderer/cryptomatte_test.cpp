@@ -319,29 +319,28 @@ TEST(Cryptomatte, WithoutTheAovNothingIsWritten) {
     EXPECT_EQ(attr.name().string().rfind("cryptomatte", 0), std::string::npos) << attr.name();
 }
 
-// Partials carry exact sums, not per-shape counts: refused before rendering.
-TEST(Cryptomatte, RefusedForPartialRenders) {
+// A partial render keeps the Cryptomatte counts (partial_cryptomatte_test.cpp
+// merges them); a depth outside [1, kMaxCryptoDepth] is refused before rendering.
+TEST(Cryptomatte, PartialRendersKeepTheCountsAndBadDepthsAreRefused) {
   const SceneDescription d = split_scene(8);
   RenderOptions o;
   o.aovs = std::vector<Aov>{Aov::Cryptomatte};
   o.keep_sums = true;
-  try {
-    check_sampling_options(d.render, o);
-    FAIL() << "accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("cryptomatte"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("--partial"), std::string::npos) << e.what();
-  }
-  EXPECT_THROW(render(build_scene(d), o), std::invalid_argument);
-  RenderOptions zero;  // no ranks at all is a mistake too
+  EXPECT_NO_THROW(check_sampling_options(d.render, o));
+  const RenderResult r = render(build_scene(d), o);
+  ASSERT_TRUE(r.crypto);
+  EXPECT_EQ(r.crypto->types, (std::vector<std::string>{kCryptoObject, kCryptoMaterial}));
+  EXPECT_EQ(r.crypto->position, r.film.channels.size());
+  for (uint32_t total : r.crypto->totals) EXPECT_EQ(total, 8u);
+  RenderOptions no_sums;  // an ordinary render keeps nothing
+  no_sums.aovs = o.aovs;
+  EXPECT_FALSE(render(build_scene(d), no_sums).crypto);
+  RenderOptions zero;  // no ranks at all is a mistake
   zero.aovs = std::vector<Aov>{Aov::Cryptomatte};
   zero.cryptomatte_depth = 0;
   EXPECT_THROW(check_sampling_options(d.render, zero), std::invalid_argument);
-  SceneDescription in_scene = d;  // render.aovs asks for it
-  in_scene.render.aovs = {Aov::Cryptomatte};
-  RenderOptions partial;
-  partial.keep_sums = true;
-  EXPECT_THROW(check_sampling_options(in_scene.render, partial), std::invalid_argument);
+  zero.cryptomatte_depth = kMaxCryptoDepth + 1;
+  EXPECT_THROW(check_sampling_options(d.render, zero), std::invalid_argument);
 }
 
 }  // namespace

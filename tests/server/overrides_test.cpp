@@ -44,16 +44,15 @@ TEST_F(OverridesTest, BadKeysAreRefusedNamingTheirPath) {
   EXPECT_TRUE(get_ok("/jobs").at("jobs").empty());
 }
 
-// Cryptomatte is refused in partial renders: a job asking for it may not split frames.
-TEST_F(OverridesTest, CryptomatteJobsDoNotSplitFrames) {
+// Partials carry Cryptomatte's counts: a job asking for it may split frames.
+TEST_F(OverridesTest, CryptomatteJobsMaySplitFrames) {
   start();
-  const auto split = refusal({{"aovs", {"cryptomatte"}}, {"spp", 64}, {"samples_per_task", 16}});
-  EXPECT_EQ(split.first, "/samples_per_task");
-  EXPECT_NE(split.second.find("cryptomatte"), std::string::npos) << split.second;
-  post_ok("/jobs", job_body({{"aovs", {"cryptomatte"}}, {"spp", 64}, {"samples_per_task", 64}}),
-          sub(), 201);
-  post_ok("/jobs", job_body({{"aovs", {"albedo"}}, {"spp", 64}, {"samples_per_task", 16}}), sub(),
-          201);
+  const auto id =
+      post_ok("/jobs", job_body({{"aovs", {"cryptomatte"}}, {"spp", 64}, {"samples_per_task", 16}}),
+              sub(), 201)
+          .at("id")
+          .get<int64_t>();
+  EXPECT_EQ(get_ok("/jobs/" + std::to_string(id)).at("tasks").size(), 4u);  // [0,16) ... [48,64)
 }
 
 TEST_F(OverridesTest, EachLeaseCarriesTheJobsOverrides) {
