@@ -181,8 +181,8 @@ TEST_F(JobStoreTest, IdenticalTasksAreRenderedOnceByTheSameRenderer) {
 }
 
 // A job's render overrides reach each lease, and are part of what makes
-// tasks identical: the same scene with other AOVs or another seed is another
-// result.
+// tasks identical: the same scene with other AOVs, another seed or half-float
+// channels is another result.
 TEST_F(JobStoreTest, RenderOverridesAreLeasedAndKeyResultReuse) {
   JobStore s(db(), StoreOptions{60, 3});
   JobSpec a = spec({1}, 8);
@@ -201,7 +201,8 @@ TEST_F(JobStoreTest, RenderOverridesAreLeasedAndKeyResultReuse) {
   for (auto change : std::vector<std::function<void(RenderOverrides&)>>{
            [](RenderOverrides& o) { o.aovs = {"variance"}; },
            [](RenderOverrides& o) { o.layer_variance = false; },
-           [](RenderOverrides& o) { o.seed = 8; }, [](RenderOverrides& o) { o.scale.reset(); }}) {
+           [](RenderOverrides& o) { o.seed = 8; }, [](RenderOverrides& o) { o.scale.reset(); },
+           [](RenderOverrides& o) { o.half = true; }}) {
     JobSpec b = a;
     change(b.overrides);
     const int64_t other = s.submit(b, 5);
