@@ -3,9 +3,9 @@
 // as `vesper render` takes it: the AOVs (--aov, instead of the scene's
 // render.aovs), the per-layer variance (--layer-variance), the seed (--seed,
 // instead of the scene's render.seed; each frame still gets its own from it)
-// a film scale (--scale) and half-float colour channels (--half). `vesper regress --server` needs the first four to
-// render on the farm what it renders locally (docs/farm.md, "Render
-// overrides"). Unset, a job renders as the scene says.
+// a film scale (--scale) and half-float colour channels (--half). `vesper regress --server` needs
+// the first four to render on the farm what it renders locally (docs/farm.md, "Render overrides").
+// Unset, a job renders as the scene says.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -21,7 +21,7 @@ struct RenderOverrides {
   bool layer_variance = false;    // <layer>.variance.R/G/B for every RGB layer
   std::optional<uint64_t> seed;   // at most INT64_MAX (the store keeps it as an integer)
   std::optional<double> scale;    // film width and height times this, in (0, kMaxFilmScale]
-  bool half = false;  // half-float colour channels, whatever film.pixel_type says
+  bool half = false;              // half-float colour channels, whatever film.pixel_type says
 
   bool operator==(const RenderOverrides&) const = default;
   bool empty() const { return aovs.empty() && !layer_variance && !seed && !scale && !half; }
