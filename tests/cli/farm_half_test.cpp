@@ -1,7 +1,7 @@
 // The `half` render override on the farm (`vesper submit --half`, a job
 // file's "half": true): fetched frames have half-float colour channels and
 // are bitwise `vesper render --half --frame N`, merged split frames too, and
-// a float job's results are never reused for a half one.
+// a float job's results are never reused for a half one; `vesper up --half`.
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
@@ -80,6 +80,23 @@ TEST_F(FarmHalf, AHalfJobFileSplitFrameMergesToTheLocalHalfRender) {
   const auto formats = channel_formats(dir_ / "frames/split.0003.exr");
   for (const char* c : {"R", "G", "B"}) EXPECT_EQ(formats.at(c), OIIO::TypeDesc::HALF) << c;
   expect_local_half(scene, "split.0003.exr", 3);
+}
+
+// `vesper up --half`: the frames it fetches are half (and composite).
+TEST_F(FarmHalf, UpHalfFetchesHalfFramesAndComposites) {
+  const auto scene = write_scene(24, 18, 4);
+  std::ofstream(scene.parent_path() / "comp.json") << R"({
+    "format": "vesper-comp/1", "inputs": {"frame": "unused.exr"},
+    "layers": [{"layer": "beauty"}], "outputs": {"image": "x.png"}})";
+  const RunResult r =
+      run(fmt::format("up --scene {} --frames 5 --workers 1 --half --data-dir {} -o {}",
+                      scene.string(), (dir_ / "farm").string(), (dir_ / "frames").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto formats = channel_formats(dir_ / "frames/scene.0005.exr");
+  for (const char* c : {"R", "G", "B"}) EXPECT_EQ(formats.at(c), OIIO::TypeDesc::HALF) << c;
+  expect_local_half(scene, "scene.0005.exr", 5);
+  // (one frame: the composite has no frame number)
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "frames/scene.comp.png")) << r.out;
 }
 
 }  // namespace
