@@ -157,6 +157,7 @@ struct SubmitCommandOptions {
   std::optional<std::string> frames, name;
   std::optional<int> spp, samples_per_task, priority, max_attempts;
   SamplingFlags sampling;  // the job's budget per frame (docs/farm.md)
+  bool half = false;       // --half: half-float colour channels (the job file's "half": true)
   bool wait = false, dry_run = false;
 };
 int run_submit(const SubmitCommandOptions& options);
@@ -206,6 +207,7 @@ struct UpCommandOptions {
   std::optional<int> workers, spp, samples_per_task;
   SamplingFlags sampling;
   std::optional<std::string> scene, frames, comp, data_dir, output_dir;
+  bool half = false;  // --half: the job's frames with half-float colour channels
   bool no_comp = false;
 };
 int run_up(const UpCommandOptions& options);

@@ -60,7 +60,7 @@ JobRequest parse_job_file_text(const std::string& text, const std::filesystem::p
   namespace f = protocol::field;
   root.allow_keys({"format", f::kScene, f::kName, f::kFrames, f::kSpp, f::kSamplesPerTask,
                    f::kPriority, f::kMaxAttempts, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp,
-                   f::kTimeLimit, f::kAovs, f::kLayerVariance, f::kSeed, f::kScale,
+                   f::kTimeLimit, f::kAovs, f::kLayerVariance, f::kSeed, f::kScale, f::kHalf,
                    f::kTaskTimeout});
   const std::filesystem::path scene = root.string("scene");
   r.scene = scene.is_relative() ? file.parent_path() / scene : scene;

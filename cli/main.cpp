@@ -320,6 +320,9 @@ void add_submit(CLI::App& app, Dispatch& dispatch) {
   sb->add_option("--max-attempts", o->max_attempts, "Attempts per task (default 3)")
       ->check(CLI::Range(1, 100));
   add_sampling_flags(sb, o->sampling);  // per frame; a split frame's tasks share it
+  sb->add_flag("--half", o->half,
+               "Half-float colour channels in every frame (as `vesper render --half`; a job "
+               "file's \"half\": true)");
   sb->add_flag("--wait", o->wait, "Wait for the job with a progress bar");
   sb->add_flag("--dry-run", o->dry_run, "Validate only; create nothing");
   dispatch.on(sb, [o] { return run_submit(*o); });
@@ -372,6 +375,7 @@ void add_up(CLI::App& app, Dispatch& dispatch) {
   u->add_option("--split", o->samples_per_task, "Samples per task (0 = whole frames)")
       ->check(at_least(0));
   add_sampling_flags(u, o->sampling);
+  u->add_flag("--half", o->half, "Half-float colour channels in every frame (render --half)");
   u->add_option("--comp", o->comp, "Composite recipe (default: comp.json beside the scene)");
   u->add_flag("--no-comp", o->no_comp, "Do not composite");
   u->add_option("--data-dir", o->data_dir, "Farm data dir (default out/farm)");

@@ -129,6 +129,7 @@ Submitted submit_job(FarmClient& client, const JobRequest& request, bool dry_run
   body.layer_variance = r.overrides.layer_variance;
   body.seed = r.overrides.seed;
   body.scale = r.overrides.scale;
+  body.half = r.overrides.half;
   body.task_timeout = r.task_timeout;
 
   std::string path(protocol::paths::kJobs);
@@ -160,6 +161,7 @@ int run_submit(const SubmitCommandOptions& o) {
     if (o.priority) r.priority = *o.priority;
     if (o.max_attempts) r.max_attempts = *o.max_attempts;
     apply_sampling_flags(r.sampling, o.sampling);
+    if (o.half) r.overrides.half = true;
 
     const std::string url = resolve_server_url(settings, o.farm.server);
     FarmClient client(url, resolve_token(settings, url, o.farm.token, TokenRole::Submitter));

@@ -99,6 +99,7 @@ UpPlan plan_up(const UpCommandOptions& o) {
   if (o.spp) p.request.spp = *o.spp;
   if (o.samples_per_task) p.request.samples_per_task = *o.samples_per_task;
   apply_sampling_flags(p.request.sampling, o.sampling);
+  p.request.overrides.half = o.half;
   p.workers = std::max(1, o.workers.value_or(p.settings.up.workers));
   // The workers share this machine's cores: at most `tasks` renders run at
   // once, so each gets cores / min(workers, tasks) threads. (Splitting a frame

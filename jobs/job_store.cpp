@@ -56,7 +56,7 @@ Lease grant_lease(JobStore::Impl& store, int64_t task_id, const std::string& wor
 void describe_lease(const JobStore::Impl& store, Lease& lease) {
   sql::Stmt job(store.db,
                 "SELECT scene, spp, noise_target, min_spp, time_limit, aovs, layer_variance, seed, "
-                "scale, task_timeout FROM jobs WHERE id = ?1");
+                "scale, task_timeout, half FROM jobs WHERE id = ?1");
   job.bind(1, lease.task.job_id);
   job.step();
   lease.scene = job.text(0);
@@ -72,6 +72,7 @@ void describe_lease(const JobStore::Impl& store, Lease& lease) {
   if (const auto seed = job.optional_i64(7)) o.seed = uint64_t(*seed);
   o.scale = job.optional_f64(8);
   lease.task_timeout = job.optional_f64(9);
+  o.half = job.i64(10) != 0;
   lease.assets = store.assets(lease.task.job_id);
 }
 
@@ -117,10 +118,10 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
   sql::Stmt(db,
             "INSERT INTO jobs(id, name, scene, spp, priority, max_attempts, state, created, "
             "inputs_key, noise_target, min_spp, time_limit, aovs, layer_variance, seed, scale, "
-            "task_timeout) "
+            "task_timeout, half) "
             // Above every id ever used, deleted ones too (migration 0011).
             "VALUES((SELECT id + 1 FROM job_id_high_water), ?1, ?2, ?3, ?4, ?5, 'active', ?6, ?7, "
-            "?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15)")
+            "?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16)")
       .bind(1, spec.name)
       .bind(2, spec.scene)
       .bind(3, int64_t(spec.spp))
@@ -136,6 +137,7 @@ int64_t JobStore::submit(const JobSpec& spec, double now) {
       .bind(13, o.seed ? std::optional<int64_t>(int64_t(*o.seed)) : std::nullopt)
       .bind(14, o.scale)
       .bind(15, spec.task_timeout)
+      .bind(16, int64_t(o.half))
       .run();
   const int64_t job = sqlite3_last_insert_rowid(db.get());
   for (size_t i = 0; i < spec.assets.size(); ++i)

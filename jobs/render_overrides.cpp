@@ -28,6 +28,7 @@ std::string overrides_key(const RenderOverrides& o) {
   if (o.layer_variance) key += ";layer_variance=1";
   if (o.seed) key += ";seed=" + std::to_string(*o.seed);
   if (o.scale) key += ";scale=" + exact_text(*o.scale);
+  if (o.half) key += ";half=1";
   return key;
 }
 

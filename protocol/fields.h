@@ -63,6 +63,7 @@ inline constexpr const char* kAovs = "aovs";
 inline constexpr const char* kLayerVariance = "layer_variance";
 inline constexpr const char* kSeed = "seed";
 inline constexpr const char* kScale = "scale";
+inline constexpr const char* kHalf = "half";
 
 // Tasks
 inline constexpr const char* kJobId = "job_id";

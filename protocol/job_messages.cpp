@@ -36,6 +36,7 @@ VESPER_JSON_FIELDS(
     optional(f::kTimeLimit, &SubmitRequest::time_limit), optional(f::kAovs, &SubmitRequest::aovs),
     optional(f::kLayerVariance, &SubmitRequest::layer_variance),
     optional(f::kSeed, &SubmitRequest::seed), optional(f::kScale, &SubmitRequest::scale),
+    optional(f::kHalf, &SubmitRequest::half),
     optional(f::kTaskTimeout, &SubmitRequest::task_timeout))
 VESPER_JSON_FIELDS(SubmitResponse, required(f::kId, &SubmitResponse::id),
                    required(f::kTaskCount, &SubmitResponse::task_count))

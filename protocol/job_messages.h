@@ -32,11 +32,12 @@ struct SubmitRequest {
   std::optional<int> min_spp, max_spp;  // with noise_target; max_spp replaces spp
   std::optional<double> time_limit;     // seconds of rendering per frame, > 0
   // Render overrides (docs/farm.md, "Render overrides"), as `vesper render`'s
-  // --aov, --layer-variance, --seed, --scale; each left out when unset.
+  // --aov, --layer-variance, --seed, --scale, --half; each left out when unset.
   std::vector<std::string> aovs;  // AOV names instead of the scene's render.aovs
   bool layer_variance = false;
   std::optional<uint64_t> seed;  // instead of the scene's render.seed
   std::optional<double> scale;   // film size factor, in (0, 4]
+  bool half = false;             // half-float colour channels
   // Seconds one render of one task may take before its worker kills it
   // (that attempt fails); left out: the server's default.
   std::optional<double> task_timeout;

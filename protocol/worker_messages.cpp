@@ -33,6 +33,7 @@ VESPER_JSON_FIELDS(
     optional(f::kTimeLimit, &LeaseResponse::time_limit), optional(f::kAovs, &LeaseResponse::aovs),
     optional(f::kLayerVariance, &LeaseResponse::layer_variance),
     optional(f::kSeed, &LeaseResponse::seed), optional(f::kScale, &LeaseResponse::scale),
+    optional(f::kHalf, &LeaseResponse::half),
     optional(f::kTaskTimeout, &LeaseResponse::task_timeout))
 VESPER_JSON_FIELDS(HeartbeatRequest, required(f::kLeaseId, &HeartbeatRequest::lease_id),
                    required(f::kProgress, &HeartbeatRequest::progress))

@@ -66,11 +66,12 @@ struct LeaseResponse {
   std::optional<int> min_spp;
   std::optional<double> time_limit;
   // The job's render overrides (`vesper render --aov a,b --layer-variance
-  // --seed S --scale X`); each left out when unset.
+  // --seed S --scale X --half`); each left out when unset.
   std::vector<std::string> aovs;
   bool layer_variance = false;
   std::optional<uint64_t> seed;
   std::optional<double> scale;
+  bool half = false;
   // Seconds the render may take: the worker kills it after that and fails
   // the attempt (the job's task_timeout, else the server's default; left out
   // when neither is set).

@@ -143,7 +143,7 @@ std::vector<int> read_frames(const JsonReader& frames) {
 JobSpec read_job(JsonReader& o) {
   o.allow_keys({f::kName, f::kScene, f::kFrames, f::kSpp, f::kSamplesPerTask, f::kPriority,
                 f::kMaxAttempts, f::kAssets, f::kNoiseTarget, f::kMinSpp, f::kMaxSpp, f::kTimeLimit,
-                f::kAovs, f::kLayerVariance, f::kSeed, f::kScale, f::kTaskTimeout});
+                f::kAovs, f::kLayerVariance, f::kSeed, f::kScale, f::kHalf, f::kTaskTimeout});
   JobSpec spec;
   spec.name = read_name(o, f::kName, 256, "job");
   spec.scene = sha256_at(o, f::kScene, "an uploaded scene blob");
@@ -194,6 +194,7 @@ RenderOverrides read_render_overrides(JsonReader& o) {
   if (const auto v = o.optional_child(f::kSeed)) r.seed = uint64_t(v->as_integer(0, INT64_MAX));
   if (const auto v = o.optional_child(f::kScale))
     r.scale = v->as_number(Range::left_open(0, kMaxFilmScale));
+  r.half = o.boolean(f::kHalf, false);
   return r;
 }
 

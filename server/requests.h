@@ -19,7 +19,8 @@ class JsonReader;
 
 // A submitted job: {"name", "scene", "frames", "spp", "samples_per_task",
 // "priority", "max_attempts", "assets", "noise_target", "min_spp", "max_spp",
-// "time_limit", "aovs", "layer_variance", "seed", "scale"}. `frames` is a frame-range string
+// "time_limit", "aovs", "layer_variance", "seed", "scale", "half"}. `frames` is a frame-range
+// string
 // ("1-10x2", "1,5,9") or an array of integers; `scene` must be a SHA-256 (the
 // existence of the blob is checked by the server). Limits: spp <= 1<<20, at
 // most kMaxTasksPerJob tasks, kMaxAssetsPerJob assets. "assets": [{"name":
@@ -42,8 +43,8 @@ JobSpec read_job_request(const std::string& body);
 BudgetRequest read_budget_request(JsonReader& object);
 // The render override keys of `object` (a submit body, a job file): "aovs"
 // (a non-empty list of AOV names, each known to the renderer, none twice),
-// "layer_variance" (boolean), "seed" (an integer in [0, 2^63 - 1]) and
-// "scale" (a number in (0, 4]). Unset when absent.
+// "layer_variance" (boolean), "seed" (an integer in [0, 2^63 - 1]),
+// "scale" (a number in (0, 4]) and "half" (boolean). Unset when absent.
 RenderOverrides read_render_overrides(JsonReader& object);
 // Tasks `spec` splits into (what the store will create).
 int64_t task_count(const JobSpec& spec);

@@ -47,6 +47,10 @@ struct Comparison {
     expect(key::kSampleEnd, end, std::to_string(e.sample_end), "the task's range ends at");
     expect(key::kSeed, seed, std::to_string(e.seed), "the task's seed is");
   }
+  // Without the override the scene's film.pixel_type decides (not checked).
+  void check_pixel_type(const ExpectedResult& e, const std::string& pixel_type) {
+    if (e.half) expect(key::kPixelType, pixel_type, "half", "the job asks for");
+  }
 };
 
 std::string check_exr(const fs::path& file, const ExpectedResult& e) {
@@ -64,6 +68,7 @@ std::string check_exr(const fs::path& file, const ExpectedResult& e) {
   Comparison c;
   c.check(e, text(key::kSceneHash), text(key::kFrame), text(key::kSampleBegin),
           text(key::kSampleEnd), text(key::kSeed));
+  c.check_pixel_type(e, text(key::kPixelType));
   if (!c.problem.empty()) return c.problem;
   // The last scanline too: a truncated file opens but would fail every reader
   // later. Not every pixel: decoding a noisy 256x256 16-channel frame cost
@@ -114,6 +119,7 @@ std::string check_partial(const fs::path& file, const ExpectedResult& e) {
   c.check(e, text(h, "scene_hash"), text(h.value("metadata", nlohmann::json()), key::kFrame),
           text(h, "sample_begin"), text(h, "sample_end"), text(h, "seed"));
   c.expect("frame_spp", text(h, "frame_spp"), std::to_string(e.frame_spp), "the job's spp is");
+  c.check_pixel_type(e, text(h.value("metadata", nlohmann::json()), key::kPixelType));
   if (!c.problem.empty()) return c.problem;
   in.seekg(0, std::ios::end);
   const std::string body = std::to_string(in.tellg() - body_start);
@@ -138,6 +144,7 @@ ExpectedResult ResultExpectations::of(const Lease& lease) {
   e.frame_spp = lease.spp;
   // As the worker decides (worker/render_command.cpp: renders_partial).
   e.partial = e.sample_begin != 0 || e.sample_end != lease.spp;
+  e.half = lease.overrides.half;
   const Scene scene = this->scene(lease);
   e.scene_hash = scene.hash;
   // `vesper render --frame N` mixes the frame into the seed (cli/render_command.cpp).

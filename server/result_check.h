@@ -6,7 +6,8 @@
 // image (header and pixels), a sample-range task's a vesper partial
 // (docs/partial-format.md: magic, header, body size; its sums are checked
 // when the frame is merged), and its metadata must name the task's scene
-// hash, frame, sample range, frame spp and seed.
+// hash, frame, sample range, frame spp and seed, and vesper:pixel_type "half"
+// when the job asks for half (a worker older than the override would ignore it).
 //
 // Not a proof of honest pixels: a worker can still upload a valid image of
 // the right metadata and wrong pixels (docs/farm.md, "Not enforced yet").
@@ -32,6 +33,7 @@ struct ExpectedResult {
   int frame_spp = 0;
   uint64_t seed = 0;     // after the per-frame mixing (frame_seed)
   bool partial = false;  // a sample range of the frame, not all of it
+  bool half = false;     // the job's `half` override: vesper:pixel_type must be "half"
 };
 
 // What is wrong with the result at `file` ("" when nothing is), e.g.

@@ -112,6 +112,7 @@ ApiResponse lease(const WorkerHandlerDeps& d, const ApiRequest& req) {
   out.layer_variance = l->overrides.layer_variance;
   out.seed = l->overrides.seed;
   out.scale = l->overrides.scale;
+  out.half = l->overrides.half;
   out.task_timeout = l->task_timeout;
   if (!out.task_timeout && d.default_task_timeout > 0) out.task_timeout = d.default_task_timeout;
   return json_response(200, out);

@@ -47,6 +47,7 @@ std::vector<std::string> render_command(const protocol::LeaseResponse& lease,
   if (lease.layer_variance) argv.push_back("--layer-variance");
   if (lease.seed) add("--seed", std::to_string(*lease.seed));
   if (lease.scale) add("--scale", exact_text(*lease.scale));
+  if (lease.half) argv.push_back("--half");
   if (config.render_threads > 0) {
     argv.push_back("--threads");
     argv.push_back(std::to_string(config.render_threads));

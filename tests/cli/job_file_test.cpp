@@ -45,6 +45,25 @@ TEST(JobFile, FormatOfAnotherTypeIsNotAJobFileAndNeverThrows) {
   }
 }
 
+// "half" (render override): a boolean; anything else is an error naming the
+// file and the key.
+TEST(JobFile, HalfIsABooleanAndAnotherTypeNamesTheKey) {
+  const char* head = R"({"format": "vesper-job/1", "scene": "s.json", )";
+  EXPECT_TRUE(cli::parse_job_file_text(std::string(head) + R"("half": true})", "job.json", {})
+                  .overrides.half);
+  EXPECT_FALSE(
+      cli::parse_job_file_text(std::string(head) + R"("spp": 4})", "job.json", {}).overrides.half);
+  for (const char* bad : {R"("yes")", "1", "null"}) {
+    try {
+      cli::parse_job_file_text(std::string(head) + R"("half": )" + bad + "}", "job.json", {});
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const JsonError& e) {
+      EXPECT_EQ(e.json_path(), "/half") << e.what();
+      EXPECT_NE(std::string(e.what()).find("job.json"), std::string::npos) << e.what();
+    }
+  }
+}
+
 class JobFileCli : public test::CliTest {
  protected:
   JobFileCli() : CliTest("submit") {}
@@ -59,6 +78,14 @@ TEST_F(JobFileCli, FormatOfAnotherTypeIsAClearError) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(r.err.find("type_error"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("job.json: /format: expected"), std::string::npos) << r.err;
+}
+
+TEST_F(JobFileCli, ABadHalfKeyIsAClearError) {
+  const auto file = dir_ / "job.json";
+  std::ofstream(file) << R"({"format": "vesper-job/1", "scene": "scene.json", "half": "yes"})";
+  const test::RunResult r = run(file.string() + " --server http://127.0.0.1:9 --token t");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("job.json: /half: expected"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -39,7 +39,7 @@ TEST_F(JobStoreTest, SubmitSplitsFramesIntoSampleRanges) {
   EXPECT_EQ(tasks[2].sample_end, 10);  // the last range is short
   EXPECT_EQ(tasks[3].frame, 2);
   EXPECT_EQ(s.job(j)->queued, 6);
-  EXPECT_EQ(s.schema_version(), 12);
+  EXPECT_EQ(s.schema_version(), 13);
 }
 
 TEST_F(JobStoreTest, LeasesByPriorityThenAgeThenFrame) {
@@ -181,8 +181,8 @@ TEST_F(JobStoreTest, IdenticalTasksAreRenderedOnceByTheSameRenderer) {
 }
 
 // A job's render overrides reach each lease, and are part of what makes
-// tasks identical: the same scene with other AOVs or another seed is another
-// result.
+// tasks identical: the same scene with other AOVs, another seed or half-float
+// channels is another result.
 TEST_F(JobStoreTest, RenderOverridesAreLeasedAndKeyResultReuse) {
   JobStore s(db(), StoreOptions{60, 3});
   JobSpec a = spec({1}, 8);
@@ -201,7 +201,8 @@ TEST_F(JobStoreTest, RenderOverridesAreLeasedAndKeyResultReuse) {
   for (auto change : std::vector<std::function<void(RenderOverrides&)>>{
            [](RenderOverrides& o) { o.aovs = {"variance"}; },
            [](RenderOverrides& o) { o.layer_variance = false; },
-           [](RenderOverrides& o) { o.seed = 8; }, [](RenderOverrides& o) { o.scale.reset(); }}) {
+           [](RenderOverrides& o) { o.seed = 8; }, [](RenderOverrides& o) { o.scale.reset(); },
+           [](RenderOverrides& o) { o.half = true; }}) {
     JobSpec b = a;
     change(b.overrides);
     const int64_t other = s.submit(b, 5);
@@ -388,7 +389,7 @@ INSERT INTO tasks(job_id, frame, sample_begin, sample_end, state) VALUES(1, 2, 0
 )sql");
   }
   JobStore s(db());
-  EXPECT_EQ(s.schema_version(), 12);
+  EXPECT_EQ(s.schema_version(), 13);
   EXPECT_EQ(s.job(1)->name, "old");
   EXPECT_TRUE(s.assets(1).empty());
   EXPECT_TRUE(s.frame(1, 1)->complete());

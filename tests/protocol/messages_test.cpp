@@ -144,9 +144,10 @@ void expect_overrides_travel(T m) {
   m.layer_variance = true;
   m.seed = 9007199254740993ull;  // above 2^53: kept exact as an integer
   m.scale = 0.125;
+  m.half = true;
   const json set = m;
   const json expected = json::parse(R"({"aovs": ["variance", "albedo"], "layer_variance": true,
-      "seed": 9007199254740993, "scale": 0.125})");
+      "seed": 9007199254740993, "scale": 0.125, "half": true})");
   for (const auto& [key, value] : expected.items()) {
     EXPECT_FALSE(unset.contains(key)) << key;
     EXPECT_EQ(set.at(key), value) << key;

@@ -190,6 +190,7 @@ TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
   submit.layer_variance = true;
   submit.seed = 7;
   submit.scale = 0.25;
+  submit.half = true;
   submit.task_timeout = 3600;
   EXPECT_EQ(keys_of(nlohmann::json(submit)), properties(doc, "SubmitRequest"));
 
@@ -201,6 +202,7 @@ TEST(OpenApiTest, EveryMessageWritesTheKeysItsSchemaDocuments) {
   lease.layer_variance = true;
   lease.seed = 7;
   lease.scale = 0.5;
+  lease.half = true;
   lease.task_timeout = 3600;
   EXPECT_EQ(keys_of(nlohmann::json(lease)), properties(doc, "LeaseResponse"));
   EXPECT_EQ(keys_of(nlohmann::json(lease.task)), properties(doc, "LeasedTask"));

@@ -40,6 +40,7 @@ TEST_F(OverridesTest, BadKeysAreRefusedNamingTheirPath) {
   EXPECT_EQ(refusal({{"seed", 1.5}}).first, "/seed");
   EXPECT_EQ(refusal({{"scale", 0}}).first, "/scale");
   EXPECT_EQ(refusal({{"scale", 4.5}}).first, "/scale");
+  EXPECT_EQ(refusal({{"half", "yes"}}).first, "/half");
   EXPECT_EQ(refusal({{"sacle", 0.5}}).first, "/sacle");
   EXPECT_TRUE(get_ok("/jobs").at("jobs").empty());
 }
@@ -61,7 +62,8 @@ TEST_F(OverridesTest, EachLeaseCarriesTheJobsOverrides) {
           job_body({{"aovs", {"variance", "albedo"}},
                     {"layer_variance", true},
                     {"seed", 9007199254740993ull},
-                    {"scale", 0.25}}),
+                    {"scale", 0.25},
+                    {"half", true}}),
           sub(), 201);
   post_ok("/jobs", job_body(json::object()), sub(), 201);
   const std::string w = register_worker("w");
@@ -70,8 +72,9 @@ TEST_F(OverridesTest, EachLeaseCarriesTheJobsOverrides) {
   EXPECT_EQ(l.at("layer_variance"), true);
   EXPECT_EQ(l.at("seed").get<uint64_t>(), 9007199254740993ull);
   EXPECT_EQ(l.at("scale"), 0.25);
+  EXPECT_EQ(l.at("half"), true);
   const json plain = lease(w);
-  for (const char* key : {"aovs", "layer_variance", "seed", "scale"})
+  for (const char* key : {"aovs", "layer_variance", "seed", "scale", "half"})
     EXPECT_FALSE(plain.contains(key)) << plain.dump();
 }
 

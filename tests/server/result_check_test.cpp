@@ -11,6 +11,7 @@
 #include "renderer/sampling/random_hash.h"
 #include "server/result_check.h"
 #include "server/tokens.h"
+#include "tests/common/temp_dir.h"
 #include "tests/server/server_fixture.h"
 
 namespace vesper {
@@ -26,6 +27,7 @@ struct Header {
   std::string scene_hash = SceneHash(kScene).hex();
   int frame = 1, begin = 0, end = 8;
   uint64_t seed = frame_seed(7, 1);
+  std::string pixel_type;  // vesper:pixel_type when set
 };
 
 // A small multi-layer EXR whose header says what `h` says, as render() writes it.
@@ -38,6 +40,7 @@ std::string exr_bytes(const fs::path& dir, const Header& h, int size = 8) {
   spec.attribute("vesper:sample_begin", std::to_string(h.begin));
   spec.attribute("vesper:sample_end", std::to_string(h.end));
   spec.attribute("vesper:seed", std::to_string(h.seed));
+  if (!h.pixel_type.empty()) spec.attribute("vesper:pixel_type", h.pixel_type);
   std::vector<float> pixels(size_t(size * size * 7), 0.5f);
   auto out = OIIO::ImageOutput::create(file.string());
   EXPECT_TRUE(out && out->open(file.string(), spec));
@@ -50,14 +53,12 @@ std::string exr_bytes(const fs::path& dir, const Header& h, int size = 8) {
 // A partial render's magic and header (docs/partial-format.md) and a body.
 std::string partial_bytes(const Header& h, int frame_spp) {
   const std::string body = "0123456789";
-  const json header{{"format", "vesper-partial/2"},
-                    {"scene_hash", h.scene_hash},
-                    {"sample_begin", h.begin},
-                    {"sample_end", h.end},
-                    {"frame_spp", frame_spp},
-                    {"seed", h.seed},
-                    {"metadata", {{"vesper:frame", std::to_string(h.frame)}}},
-                    {"sums", {{"compressed_bytes", body.size()}}}};
+  json metadata{{"vesper:frame", std::to_string(h.frame)}};
+  if (!h.pixel_type.empty()) metadata["vesper:pixel_type"] = h.pixel_type;
+  const json header{{"format", "vesper-partial/2"}, {"scene_hash", h.scene_hash},
+                    {"sample_begin", h.begin},      {"sample_end", h.end},
+                    {"frame_spp", frame_spp},       {"seed", h.seed},
+                    {"metadata", metadata},         {"sums", {{"compressed_bytes", body.size()}}}};
   return "VESPER-PARTIAL\n" + header.dump() + "\n" + body;
 }
 
@@ -160,6 +161,38 @@ TEST_F(ResultCheckTest, PartialsAreChecked) {
 
 // The expected scene hash covers the files the scene references (assets),
 // in the renderer's order: shapes, lights, then media by name.
+// A job with the `half` override: its results must say vesper:pixel_type
+// "half" (a worker that ignored the lease key rendered float).
+TEST(HalfResultCheck, AHalfJobsResultMustSayHalf) {
+  const test::TempDir tmp("server");
+  const fs::path dir = tmp.path();
+  ExpectedResult e;
+  e.scene_hash = Header().scene_hash;
+  e.frame = 1;
+  e.sample_end = e.frame_spp = 8;
+  e.seed = Header().seed;
+  e.half = true;
+  const fs::path partial = dir / "result.vpartial";
+  for (const bool is_partial : {false, true}) {
+    e.partial = is_partial;
+    for (const char* type : {"", "float", "half"}) {
+      Header h;
+      h.pixel_type = type;
+      const std::string bytes = is_partial ? partial_bytes(h, 8) : exr_bytes(dir, h);
+      const fs::path file = is_partial ? partial : dir / "result.exr";
+      if (is_partial) std::ofstream(file, std::ios::binary) << bytes;
+      const std::string problem = check_result(file, e);
+      if (std::string(type) == "half")
+        EXPECT_EQ(problem, "") << is_partial;
+      else
+        EXPECT_NE(problem.find("vesper:pixel_type is"), std::string::npos) << problem;
+    }
+  }
+  std::ofstream(partial, std::ios::binary) << partial_bytes(Header(), 8);  // float
+  e.half = false;  // no override: the scene decides
+  EXPECT_EQ(check_result(partial, e), "");
+}
+
 TEST(SceneHashOrder, FollowsTheLoader) {
   const json doc = json::parse(R"({"media": {"b": {"file": "m2.vdb"}, "a": {"file": "m1.vdb"}},
     "lights": [{"type": "environment", "file": "sky.exr"}],

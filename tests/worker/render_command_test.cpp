@@ -26,6 +26,7 @@ protocol::LeaseResponse with_overrides(protocol::LeaseResponse l) {
   l.layer_variance = true;
   l.seed = 11;
   l.scale = 0.125;
+  l.half = true;
   return l;
 }
 
@@ -54,7 +55,7 @@ TEST(RenderCommand, FollowsTheTaskAndTheWorkerConfig) {
       {with_overrides(lease(4, 32, 0, 32)), 1, ".exr",
        "/opt/vesper/bin/vesper render s.json -o out --spp 32 --sample-begin 0 --sample-end 32 "
        "--frame 4 --scene-dir-only --aov variance,albedo --layer-variance --seed 11 --scale 0.125 "
-       "--threads 1"},
+       "--half --threads 1"},
   };
   for (const Case& c : cases) {
     EXPECT_EQ(render_output_extension(c.lease), c.extension);
