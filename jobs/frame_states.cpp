@@ -15,8 +15,7 @@ namespace {
 // asset name (normalized, as the worker lays them out) -> blob
 std::map<std::string, std::string> assets_by_name(const JobSpec& spec) {
   std::map<std::string, std::string> out;
-  for (const Asset& a : spec.assets)
-    out[std::filesystem::path(a.name).lexically_normal().generic_string()] = a.blob;
+  for (const Asset& a : spec.assets) out[normal_asset_name(a.name)] = a.blob;
   return out;
 }
 
@@ -25,8 +24,7 @@ std::optional<std::string> state_of(const nlohmann::json& scene, int frame,
   const nlohmann::json doc = frame_document(scene, frame, "scene");
   std::string text = doc.dump();
   for (const std::string& ref : frame_file_references(doc, frame)) {
-    const std::string name = std::filesystem::path(ref).lexically_normal().generic_string();
-    const auto it = assets.find(name);
+    const auto it = assets.find(normal_asset_name(ref));
     if (it == assets.end()) return std::nullopt;
     text += "\n" + it->second;  // the bytes, as the scene hash reads them
   }
@@ -51,23 +49,19 @@ bool is_frame_of(const std::string& name, const std::string& pattern) {
   return !digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos;
 }
 
-std::string normal(const std::string& name) {
-  return std::filesystem::path(name).lexically_normal().generic_string();
-}
-
 }  // namespace
 
 std::vector<Asset> frame_assets(const nlohmann::json& scene, int frame,
                                 const std::vector<Asset>& assets) {
   std::vector<std::string> patterns;
   for (const std::string& ref : hashed_file_references(scene))
-    if (has_frame_pattern(ref)) patterns.push_back(normal(ref));
+    if (has_frame_pattern(ref)) patterns.push_back(normal_asset_name(ref));
   if (patterns.empty()) return assets;
   std::vector<Asset> out;
   for (const Asset& a : assets) {
-    const std::string name = normal(a.name);
+    const std::string name = normal_asset_name(a.name);
     const bool other_frame = std::any_of(patterns.begin(), patterns.end(), [&](const auto& p) {
-      return is_frame_of(name, p) && name != normal(frame_path(p, frame).string());
+      return is_frame_of(name, p) && name != normal_asset_name(frame_path(p, frame).string());
     });
     if (!other_frame) out.push_back(a);
   }

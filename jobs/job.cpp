@@ -1,6 +1,7 @@
 #include "jobs/job.h"
 
 #include <algorithm>
+#include <filesystem>
 
 #include "common/control_characters.h"
 #include "common/scene_reference.h"
@@ -45,6 +46,10 @@ std::optional<double> estimate_eta(const JobSummary& job, double now) {
   if (job.state != JobState::Active || !job.started_at || rendered <= 0) return std::nullopt;
   const int remaining = job.queued + job.leased + job.paused;
   return std::max(0.0, now - *job.started_at) * remaining / rendered;
+}
+
+std::string normal_asset_name(std::string_view name) {
+  return std::filesystem::path(name).lexically_normal().generic_string();
 }
 
 std::string asset_name_problem(std::string_view name) {

@@ -33,6 +33,10 @@ struct Asset {
 constexpr size_t kMaxAssetNameLength = 255;
 std::string asset_name_problem(std::string_view name);
 
+// `name` as the worker lays the assets out ("assets/./a.obj" -> "assets/a.obj"):
+// how asset names and a scene's file references are compared.
+std::string normal_asset_name(std::string_view name);
+
 struct JobSpec {
   std::string name;
   std::string scene;         // what the worker renders: a blob hash or path, opaque to the store

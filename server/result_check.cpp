@@ -174,10 +174,10 @@ ResultExpectations::Scene ResultExpectations::scene(const Lease& lease) {
   for (const std::string& ref : frame_file_references(doc, frame)) {
     // The worker renders in a directory holding the assets by name
     // (--scene-dir-only): a reference names the asset at its normal path.
-    const std::string want = fs::path(ref).lexically_normal().generic_string();
+    const std::string want = normal_asset_name(ref);
     const Asset* asset = nullptr;
     for (const Asset& a : lease.assets)
-      if (fs::path(a.name).lexically_normal().generic_string() == want) asset = &a;
+      if (normal_asset_name(a.name) == want) asset = &a;
     const auto file = asset ? blobs_.file(asset->blob) : std::nullopt;
     if (!file)
       throw std::runtime_error("the scene references '" + ref +

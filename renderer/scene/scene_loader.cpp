@@ -13,6 +13,7 @@
 #include "common/keyframes.h"
 #include "common/scene_hash.h"
 #include "common/scene_reference.h"
+#include "renderer/output/metadata_text.h"
 #include "renderer/scene/aov_list.h"
 #include "renderer/scene/render_space.h"
 #include "renderer/scene/scene_parse.h"
@@ -228,14 +229,6 @@ SceneDescription parse_frame_document(const nlohmann::json& doc, const nlohmann:
 // The frame whose files a scene loaded at `time` reads: the nearest whole frame.
 long file_frame(double time) { return std::lround(time); }
 
-// "7", or "7.25" for a time between frames.
-std::string frame_text(double frame) {
-  if (frame == std::floor(frame) && std::abs(frame) < 1e15) return std::to_string(int64_t(frame));
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", frame);
-  return buf;
-}
-
 // Whether the value at `path` of `doc`, or a value containing it, is keyframed.
 bool keyed_at(const nlohmann::json& doc, const std::string& path) {
   try {
@@ -262,7 +255,7 @@ SceneDescription parse_document(const nlohmann::json& doc, const std::filesystem
   } catch (const JsonError& e) {
     if (!keyed_at(doc, e.json_path())) throw;
     throw SceneError(e.file(), e.json_path(),
-                     e.message() + " (keyed; at frame " + frame_text(options.frame) + ")");
+                     e.message() + " (keyed; at frame " + metadata_number(options.frame) + ")");
   }
 }
 
