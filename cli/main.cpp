@@ -425,6 +425,26 @@ void add_regress(CLI::App& app, Dispatch& dispatch) {
   dispatch.on(r, [o] { return run_regress(*o); });
 }
 
+void add_bench(CLI::App& app, Dispatch& dispatch) {
+  auto o = std::make_shared<BenchCommandOptions>();
+  auto* b = app.add_subcommand(
+      "bench", "Measure time against error (relMSE) on the benchmark set (docs/bench.md)");
+  b->add_option("-o,--output", o->output, "Folder for bench.json, bench.csv, table.md, plots")
+      ->required();
+  b->add_flag("--quick", o->quick, "Tiny sizes, short ladders, low-spp references: seconds");
+  b->add_option("--compare", o->compare, "Also measure a peer renderer: cycles");
+  b->add_option("--refs", o->refs,
+                "Reference cache folder (default $XDG_CACHE_HOME/vesper/bench-refs)");
+  b->add_option("--scenes", o->scenes, "The benchmark set (vesper-bench/1; default "
+                                       "bench/scenes.json)");
+  b->add_option("--threads", o->threads, "Threads per render (default: all cores)")
+      ->check(at_least(1));
+  b->add_option("--seed", o->seed, "Seed of the measured renders (default 1)")
+      ->check(at_least(0));
+  add_quiet(b, &o->quiet);
+  dispatch.on(b, [o] { return run_bench(*o); });
+}
+
 // The deepest subcommand the command line reached (`vesper vdb cloud` -> cloud).
 const CLI::App* innermost(const CLI::App* app) {
   while (!app->get_subcommands().empty()) app = app->get_subcommands().front();
@@ -483,6 +503,7 @@ int main(int argc, char** argv) {
   add_job_commands(app, dispatch);
   add_up(app, dispatch);
   add_regress(app, dispatch);
+  add_bench(app, dispatch);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
