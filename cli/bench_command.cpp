@@ -60,7 +60,8 @@ class BenchProgress {
 };
 
 // The peer named by --compare, or an exit code when there is none to run.
-std::optional<int> add_peer(const std::string& name, std::vector<BenchRenderer>& renderers) {
+std::optional<int> add_peer(const std::string& name,
+                            [[maybe_unused]] std::vector<BenchRenderer>& renderers) {
   if (name != "cycles") {
     spdlog::error("--compare {}: unknown renderer (accepted: {})", name, kPeers);
     return kBadInput;

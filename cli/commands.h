@@ -205,10 +205,10 @@ int run_regress(const RegressCommandOptions& options);
 // cached references (docs/bench.md). Exit 0 measured, 1 a render or an
 // output failed, 2 bad input (flags, scenes file, a scene).
 struct BenchCommandOptions {
-  std::string output;                    // -o DIR
+  std::string output;  // -o DIR
   std::string scenes = "bench/scenes.json";
-  std::optional<std::string> refs;       // default: $XDG_CACHE_HOME/vesper/bench-refs
-  std::optional<std::string> compare;    // a peer renderer: "cycles"
+  std::optional<std::string> refs;     // default: $XDG_CACHE_HOME/vesper/bench-refs
+  std::optional<std::string> compare;  // a peer renderer: "cycles"
   std::optional<int> threads;
   unsigned long long seed = 1;
   bool quick = false;

@@ -435,12 +435,12 @@ void add_bench(CLI::App& app, Dispatch& dispatch) {
   b->add_option("--compare", o->compare, "Also measure a peer renderer: cycles");
   b->add_option("--refs", o->refs,
                 "Reference cache folder (default $XDG_CACHE_HOME/vesper/bench-refs)");
-  b->add_option("--scenes", o->scenes, "The benchmark set (vesper-bench/1; default "
-                                       "bench/scenes.json)");
+  b->add_option("--scenes", o->scenes,
+                "The benchmark set (vesper-bench/1; default "
+                "bench/scenes.json)");
   b->add_option("--threads", o->threads, "Threads per render (default: all cores)")
       ->check(at_least(1));
-  b->add_option("--seed", o->seed, "Seed of the measured renders (default 1)")
-      ->check(at_least(0));
+  b->add_option("--seed", o->seed, "Seed of the measured renders (default 1)")->check(at_least(0));
   add_quiet(b, &o->quiet);
   dispatch.on(b, [o] { return run_bench(*o); });
 }

@@ -5,8 +5,7 @@
 namespace vesper::measure {
 
 LayeredImage beauty_rgb(const LayeredImage& image) {
-  const int idx[3] = {image.channel_index("R"), image.channel_index("G"),
-                      image.channel_index("B")};
+  const int idx[3] = {image.channel_index("R"), image.channel_index("G"), image.channel_index("B")};
   for (int c : idx)
     if (c < 0) throw std::invalid_argument("the image has no R, G and B channels");
   LayeredImage out;

@@ -19,8 +19,8 @@ namespace IBA = OIIO::ImageBufAlgo;
 constexpr int kWidth = 720, kHeight = 480;
 constexpr int kLeft = 84, kRight = 150, kTop = 44, kBottom = 58;  // margins; legend on the right
 const Colour kInk{0.1f, 0.1f, 0.1f}, kGrid{0.88f, 0.88f, 0.88f}, kTarget{0.8f, 0.15f, 0.15f};
-const Colour kSeries[] = {{0.12f, 0.42f, 0.75f}, {0.95f, 0.5f, 0.08f},
-                          {0.2f, 0.6f, 0.25f},   {0.55f, 0.3f, 0.7f}};
+const Colour kSeries[] = {
+    {0.12f, 0.42f, 0.75f}, {0.95f, 0.5f, 0.08f}, {0.2f, 0.6f, 0.25f}, {0.55f, 0.3f, 0.7f}};
 
 // A decade range [lo, hi] of log10 values covering every value given.
 struct Axis {
@@ -38,7 +38,9 @@ struct Axis {
 
 struct Frame {
   Axis x, y;
-  int px(double t) const { return kLeft + int(std::lround(x.fraction(t) * (kWidth - kLeft - kRight))); }
+  int px(double t) const {
+    return kLeft + int(std::lround(x.fraction(t) * (kWidth - kLeft - kRight)));
+  }
   int py(double e) const {
     return kHeight - kBottom - int(std::lround(y.fraction(e) * (kHeight - kTop - kBottom)));
   }
@@ -137,7 +139,8 @@ Frame frame_for(const SceneResult& s, const std::vector<double>& targets) {
 }
 
 void write_png_atomically(const OIIO::ImageBuf& img, const std::filesystem::path& path) {
-  const std::filesystem::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp.png");
+  const std::filesystem::path tmp =
+      path.parent_path() / ("." + path.filename().string() + ".tmp.png");
   if (!img.write(tmp.string(), OIIO::TypeDesc::UINT8)) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);

@@ -17,9 +17,10 @@ using nlohmann::json;
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json time_json(const TargetTime& t) {
-  return {{"target", t.target},
-          {"seconds", t.time.estimate == TimeEstimate::None ? json(nullptr) : number(t.time.seconds)},
-          {"estimate", time_estimate_name(t.time.estimate)}};
+  return {
+      {"target", t.target},
+      {"seconds", t.time.estimate == TimeEstimate::None ? json(nullptr) : number(t.time.seconds)},
+      {"estimate", time_estimate_name(t.time.estimate)}};
 }
 
 json run_json(const RendererRun& run) {
@@ -31,10 +32,11 @@ json run_json(const RendererRun& run) {
                      {"relmse", number(m.relmse)}});
   for (const TargetTime& t : run.times) times.push_back(time_json(t));
   json j = {{"renderer", run.renderer},
-            {"reference", {{"file", run.reference_file},
-                           {"cache_hit", run.reference_cached},
-                           {"render_seconds", number(run.reference_seconds)},
-                           {"noise_floor", number(run.noise_floor)}}},
+            {"reference",
+             {{"file", run.reference_file},
+              {"cache_hit", run.reference_cached},
+              {"render_seconds", number(run.reference_seconds)},
+              {"noise_floor", number(run.noise_floor)}}},
             {"measurements", curve},
             {"time_to_error", times}};
   if (!run.error.empty()) j["error"] = run.error;
@@ -42,10 +44,14 @@ json run_json(const RendererRun& run) {
 }
 
 json agreement_json(const ReferenceAgreement& a) {
-  return {{"mean_ratio", number(a.mean_ratio)}, {"blocks", a.blocks},
-          {"block_min", number(a.block_min)},   {"block_p05", number(a.block_p05)},
-          {"block_p95", number(a.block_p95)},   {"block_max", number(a.block_max)},
-          {"flagged", a.flagged},               {"reasons", a.reasons}};
+  return {{"mean_ratio", number(a.mean_ratio)},
+          {"blocks", a.blocks},
+          {"block_min", number(a.block_min)},
+          {"block_p05", number(a.block_p05)},
+          {"block_p95", number(a.block_p95)},
+          {"block_max", number(a.block_max)},
+          {"flagged", a.flagged},
+          {"reasons", a.reasons}};
 }
 
 json comparison_json(const PeerComparison& c) {
@@ -62,10 +68,10 @@ json comparison_json(const PeerComparison& c) {
 }
 
 json scene_json(const SceneResult& s) {
-  json j = {{"name", s.name},          {"kind", s.kind},
-            {"scene", s.scene_path},   {"scene_hash", s.scene_hash},
-            {"width", s.width},        {"height", s.height},
-            {"spp", s.spp_ladder},     {"reference_spp", s.reference_spp},
+  json j = {{"name", s.name},        {"kind", s.kind},
+            {"scene", s.scene_path}, {"scene_hash", s.scene_hash},
+            {"width", s.width},      {"height", s.height},
+            {"spp", s.spp_ladder},   {"reference_spp", s.reference_spp},
             {"skipped", s.skipped}};
   if (s.skipped) j["note"] = s.note;
   j["renderers"] = json::array();
@@ -107,9 +113,8 @@ std::string bench_csv(const BenchReport& report) {
     for (const RendererRun& r : s.runs)
       for (const Measurement& m : r.curve)
         out += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{}\n", csv_field(s.name),
-                           s.kind, csv_field(r.renderer), m.spp, m.render_seconds,
-                           m.wall_seconds, m.relmse, r.noise_floor,
-                           r.reference_cached ? "true" : "false");
+                           s.kind, csv_field(r.renderer), m.spp, m.render_seconds, m.wall_seconds,
+                           m.relmse, r.noise_floor, r.reference_cached ? "true" : "false");
   return out;
 }
 

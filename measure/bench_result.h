@@ -56,8 +56,8 @@ struct SceneResult {
   int width = 0, height = 0, reference_spp = 0;
   std::vector<int> spp_ladder;
   bool skipped = false;
-  std::string note;  // why skipped
-  std::vector<RendererRun> runs;           // one per renderer, vesper first
+  std::string note;                         // why skipped
+  std::vector<RendererRun> runs;            // one per renderer, vesper first
   std::vector<PeerComparison> comparisons;  // one per peer
 };
 

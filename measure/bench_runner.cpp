@@ -47,8 +47,8 @@ CachedReference reference_for(const BenchRenderer& r, const SceneContext& ctx,
                               const RunnerOptions& o, const RunnerEvents& ev, RendererRun& run) {
   const auto [seed_a, seed_b] = reference_seeds(o.seed);
   const SceneResult& s = *ctx.scene;
-  const ReferenceKey key{s.name, r.name, r.cache_key, s.scene_hash, s.width, s.height,
-                         s.reference_spp, seed_a};
+  const ReferenceKey key{s.name,  r.name,   r.cache_key,     s.scene_hash,
+                         s.width, s.height, s.reference_spp, seed_a};
   run.reference_file = reference_path(o.refs_dir, key).string();
   std::string warning;
   if (auto cached = load_reference(o.refs_dir, key, &warning)) {
@@ -80,8 +80,7 @@ LayeredImage measure_renderer(const BenchRenderer& r, const SceneContext& ctx,
   run.noise_floor = ref.noise_floor;
   run.reference_seconds = ref.render_seconds;
   for (int spp : ctx.scene->spp_ladder) {
-    const RenderedImage img =
-        timed_render(r, ctx, spp, o.seed, o, ev, fmt::format("{} spp", spp));
+    const RenderedImage img = timed_render(r, ctx, spp, o.seed, o, ev, fmt::format("{} spp", spp));
     run.curve.push_back(
         {spp, img.render_seconds, img.wall_seconds, relative_mse(img.image, ref.image)});
   }
@@ -120,8 +119,7 @@ PeerComparison compare_with_peer(const SceneResult& s, const RendererRun& vesper
 void run_scene(SceneResult& s, const std::string& position,
                const std::vector<BenchRenderer>& renderers, const RunnerOptions& o,
                const RunnerEvents& ev) {
-  const SceneContext ctx{&s, BenchScene{s.name, s.scene_path, s.kind, s.width, s.height},
-                         position};
+  const SceneContext ctx{&s, BenchScene{s.name, s.scene_path, s.kind, s.width, s.height}, position};
   std::vector<std::optional<LayeredImage>> refs;
   for (const BenchRenderer& r : renderers) {
     RendererRun run;
@@ -138,8 +136,8 @@ void run_scene(SceneResult& s, const std::string& position,
     refs.push_back(std::move(ref));
   }
   for (size_t p = 1; p < renderers.size(); ++p)
-    s.comparisons.push_back(compare_with_peer(s, s.runs[0], s.runs[p], refs[0] ? &*refs[0] : nullptr,
-                                              refs[p] ? &*refs[p] : nullptr));
+    s.comparisons.push_back(compare_with_peer(
+        s, s.runs[0], s.runs[p], refs[0] ? &*refs[0] : nullptr, refs[p] ? &*refs[p] : nullptr));
 }
 
 }  // namespace

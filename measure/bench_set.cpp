@@ -78,16 +78,17 @@ std::string parse_name(JsonReader& node) {
            c == '.' || c == '-';
   });
   if (!allowed || name == "." || name == "..")
-    node.fail_key("name", "expected a name of letters, digits, '_', '.' and '-' (it names files), "
-                          "got \"" + name + "\"");
+    node.fail_key("name",
+                  "expected a name of letters, digits, '_', '.' and '-' (it names files), "
+                  "got \"" +
+                      name + "\"");
   return name;
 }
 
 BenchSetScene parse_scene(JsonReader node, const std::filesystem::path& base,
                           const BenchSettings& quick_defaults) {
   node.expect_object();
-  node.allow_keys(
-      {"name", "path", "kind", "width", "height", "spp", "reference_spp", "quick"});
+  node.allow_keys({"name", "path", "kind", "width", "height", "spp", "reference_spp", "quick"});
   BenchSetScene scene;
   scene.name = parse_name(node);
   scene.path = (base / node.string("path")).lexically_normal();

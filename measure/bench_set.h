@@ -22,10 +22,10 @@ struct BenchSettings {
 };
 
 struct BenchSetScene {
-  std::string name;             // unique; [A-Za-z0-9_.-]+ (it names files)
-  std::filesystem::path path;   // absolute, lexically normal
-  std::string kind;             // "surface" or "volume"
-  BenchSettings full, quick;    // quick = full with the set's and the scene's `quick` keys
+  std::string name;            // unique; [A-Za-z0-9_.-]+ (it names files)
+  std::filesystem::path path;  // absolute, lexically normal
+  std::string kind;            // "surface" or "volume"
+  BenchSettings full, quick;   // quick = full with the set's and the scene's `quick` keys
 };
 
 struct BenchSet {

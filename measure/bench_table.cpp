@@ -112,10 +112,14 @@ std::string legend() {
 
 std::string format_time_to_error(const TimeToError& t) {
   switch (t.estimate) {
-    case TimeEstimate::Interpolated: return seconds_text(t.seconds);
-    case TimeEstimate::Extrapolated: return "~" + seconds_text(t.seconds) + "*";
-    case TimeEstimate::BelowFirst: return "< " + seconds_text(t.seconds);
-    case TimeEstimate::None: break;
+    case TimeEstimate::Interpolated:
+      return seconds_text(t.seconds);
+    case TimeEstimate::Extrapolated:
+      return "~" + seconds_text(t.seconds) + "*";
+    case TimeEstimate::BelowFirst:
+      return "< " + seconds_text(t.seconds);
+    case TimeEstimate::None:
+      break;
   }
   return "-";
 }

@@ -13,9 +13,9 @@
 namespace vesper::measure {
 
 struct AgreementBands {
-  double mean_ratio_lo = 0.95, mean_ratio_hi = 1.0 / 0.95;      // whole image
-  double block_ratio_lo = 0.8, block_ratio_hi = 1.0 / 0.8;      // 5th and 95th percentiles
-  int block_size = 16;                                          // pixels a side
+  double mean_ratio_lo = 0.95, mean_ratio_hi = 1.0 / 0.95;  // whole image
+  double block_ratio_lo = 0.8, block_ratio_hi = 1.0 / 0.8;  // 5th and 95th percentiles
+  int block_size = 16;                                      // pixels a side
   // Blocks darker than this (mean of RGB, in both images) are left out:
   // their ratio is noise over nothing.
   double min_block_mean = 1e-3;
@@ -26,7 +26,8 @@ struct ReferenceAgreement {
   int blocks = 0;         // blocks compared (not too dark)
   double block_min = 0, block_p05 = 0, block_p95 = 0, block_max = 0;
   bool flagged = false;
-  std::vector<std::string> reasons;  // why flagged, e.g. "image mean ratio 1.31 outside [0.95, 1.05]"
+  std::vector<std::string>
+      reasons;  // why flagged, e.g. "image mean ratio 1.31 outside [0.95, 1.05]"
 };
 
 // `a` and `b` need R, G, B and the same size (std::invalid_argument

@@ -77,8 +77,8 @@ std::optional<CachedReference> load_reference(const std::filesystem::path& dir,
     why = e.what();
   }
   if (warning)
-    *warning = fmt::format("cached reference {} is unusable ({}); rendering it again",
-                           path.string(), why);
+    *warning =
+        fmt::format("cached reference {} is unusable ({}); rendering it again", path.string(), why);
   return std::nullopt;
 }
 

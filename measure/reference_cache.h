@@ -29,9 +29,9 @@ std::string reference_id(const ReferenceKey& key);
 std::filesystem::path reference_path(const std::filesystem::path& dir, const ReferenceKey& key);
 
 struct CachedReference {
-  LayeredImage image;          // R, G, B: the mean of the two halves
-  double noise_floor = 0;      // noise_floor.h
-  double render_seconds = 0;   // both halves, as the renderer measured them
+  LayeredImage image;         // R, G, B: the mean of the two halves
+  double noise_floor = 0;     // noise_floor.h
+  double render_seconds = 0;  // both halves, as the renderer measured them
 };
 
 // The cached reference, or nullopt when there is none. A file that cannot be

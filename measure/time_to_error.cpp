@@ -6,10 +6,14 @@ namespace vesper::measure {
 
 const char* time_estimate_name(TimeEstimate e) {
   switch (e) {
-    case TimeEstimate::Interpolated: return "interpolated";
-    case TimeEstimate::Extrapolated: return "extrapolated";
-    case TimeEstimate::BelowFirst: return "below_first";
-    case TimeEstimate::None: break;
+    case TimeEstimate::Interpolated:
+      return "interpolated";
+    case TimeEstimate::Extrapolated:
+      return "extrapolated";
+    case TimeEstimate::BelowFirst:
+      return "below_first";
+    case TimeEstimate::None:
+      break;
   }
   return "none";
 }

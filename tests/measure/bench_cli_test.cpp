@@ -24,7 +24,9 @@ class BenchCli : public test::CliTest {
     return run("--quick -o " + (dir_ / out).string() + " --refs " + (dir_ / "refs").string() +
                " --scenes " + scenes_ + " --threads 2");
   }
-  json bench_json(const std::string& out) { return json::parse(test::slurp(dir_ / out / "bench.json")); }
+  json bench_json(const std::string& out) {
+    return json::parse(test::slurp(dir_ / out / "bench.json"));
+  }
   std::string scenes_ = (fs::path(VESPER_SOURCE_DIR) / "bench/scenes.json").string();
 };
 
@@ -77,9 +79,10 @@ TEST_F(BenchCli, QuickRunIsCompleteAndTheSecondRunHitsTheCache) {
 
   const test::RunResult second = quick("b");
   ASSERT_EQ(second.exit_code, 0) << second.err;
-  for (const json& s : bench_json("b")["scenes"])
-    if (!s["skipped"].get<bool>())
-      EXPECT_TRUE(s["renderers"][0]["reference"]["cache_hit"].get<bool>()) << s["name"];
+  for (const json& s : bench_json("b")["scenes"]) {
+    if (s["skipped"].get<bool>()) continue;
+    EXPECT_TRUE(s["renderers"][0]["reference"]["cache_hit"].get<bool>()) << s["name"];
+  }
 }
 
 TEST_F(BenchCli, BadInputExitsTwoAndSaysWhy) {
@@ -91,8 +94,8 @@ TEST_F(BenchCli, BadInputExitsTwoAndSaysWhy) {
   EXPECT_EQ(other.exit_code, 2);
   EXPECT_NE(other.err.find("accepted: cycles"), std::string::npos) << other.err;
   std::ofstream(dir_ / "bad.json") << R"({"format": "vesper-bench/1", "scenes": [{"name": 3}]})";
-  const test::RunResult bad = run("--quick -o " + (dir_ / "o").string() + " --scenes " +
-                                  (dir_ / "bad.json").string());
+  const test::RunResult bad =
+      run("--quick -o " + (dir_ / "o").string() + " --scenes " + (dir_ / "bad.json").string());
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("bad.json: /scenes/0"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir_ / "o/bench.json"));

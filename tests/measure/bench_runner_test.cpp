@@ -23,8 +23,7 @@ struct Calls {
 
 // Renders truth * (1 + N(0, 0.5^2 / spp)), deterministic in (seed, spp);
 // its time is 1 ms per spp, scaled by `slowness`.
-BenchRenderer fake(const std::string& name, Calls& calls, double slowness = 1,
-                   bool fail = false) {
+BenchRenderer fake(const std::string& name, Calls& calls, double slowness = 1, bool fail = false) {
   BenchRenderer r;
   r.name = name;
   r.cache_key = name + " 1.0";
@@ -33,7 +32,7 @@ BenchRenderer fake(const std::string& name, Calls& calls, double slowness = 1,
     (seed > 1000 ? calls.references : calls.rungs)++;
     std::mt19937_64 rng(seed * 7919 + uint64_t(spp));
     RenderedImage out;
-    out.image = test::noisy(test::truth_image(s.width, s.height), 0.5 / std::sqrt(spp), rng);
+    out.image = synth::noisy(synth::truth_image(s.width, s.height), 0.5 / std::sqrt(spp), rng);
     out.render_seconds = 1e-3 * spp * slowness;
     out.wall_seconds = out.render_seconds + 0.01;
     return out;
@@ -101,7 +100,8 @@ TEST_F(BenchRunnerTest, ACorruptCacheFileIsRenderedAgainWithAWarning) {
   ASSERT_GE(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("unusable"), std::string::npos) << warnings[0];
   // The next run reads the fresh file.
-  EXPECT_TRUE(run_bench(set_, {fake("vesper", calls)}, options_).scenes[0].runs[0].reference_cached);
+  EXPECT_TRUE(
+      run_bench(set_, {fake("vesper", calls)}, options_).scenes[0].runs[0].reference_cached);
 }
 
 TEST_F(BenchRunnerTest, AnotherCacheKeyOrSizeIsAnotherReference) {
@@ -126,8 +126,8 @@ TEST_F(BenchRunnerTest, AbsentAssetSkipsTheSceneWithANote) {
 
 TEST_F(BenchRunnerTest, AFailingRendererIsRecordedAndTheRunGoesOn) {
   Calls calls;
-  const BenchReport r = run_bench(set_, {fake("vesper", calls), fake("peer", calls, 1, true)},
-                                  options_);
+  const BenchReport r =
+      run_bench(set_, {fake("vesper", calls), fake("peer", calls, 1, true)}, options_);
   ASSERT_EQ(r.scenes[0].runs.size(), 2u);
   EXPECT_TRUE(r.scenes[0].runs[0].error.empty());
   EXPECT_NE(r.scenes[0].runs[1].error.find("out of luck"), std::string::npos);

@@ -21,8 +21,8 @@ class BenchSetTest : public ::testing::Test {
   }
   // A set with one scene whose keys are `scene`, and top-level extras `top`.
   BenchSet parse(const std::string& scene, const std::string& top = "") {
-    const std::string text = R"({"format": "vesper-bench/1", )" + top + R"("scenes": [{)" +
-                             scene + "}]}";
+    const std::string text =
+        R"({"format": "vesper-bench/1", )" + top + R"("scenes": [{)" + scene + "}]}";
     return parse_bench_set_text(text, dir_ / "set.json");
   }
   // The message of the BenchSetError `scene` raises (file and path checked).
@@ -90,11 +90,11 @@ TEST_F(BenchSetTest, MistakesNameTheirJsonPath) {
 }
 
 TEST_F(BenchSetTest, FormatAndDuplicateNamesAreChecked) {
-  EXPECT_THROW(parse_bench_set_text(R"({"format": "vesper-bench/2", "scenes": []})",
-                                    dir_ / "set.json"),
-               BenchSetError);
-  const std::string two = R"({"format": "vesper-bench/1", "scenes": [{)" + ok_ + "}, {" + ok_ +
-                          "}]}";
+  EXPECT_THROW(
+      parse_bench_set_text(R"({"format": "vesper-bench/2", "scenes": []})", dir_ / "set.json"),
+      BenchSetError);
+  const std::string two =
+      R"({"format": "vesper-bench/1", "scenes": [{)" + ok_ + "}, {" + ok_ + "}]}";
   try {
     parse_bench_set_text(two, dir_ / "set.json");
     ADD_FAILURE() << "duplicate name accepted";

@@ -39,9 +39,9 @@ double standard_error(const LayeredImage& a, const LayeredImage& b) {
 
 TEST(NoiseFloor, MatchesTheAnalyticErrorOfTheMeanOfTwoHalves) {
   std::mt19937_64 rng(7);
-  const LayeredImage truth = test::truth_image(128, 128);
+  const LayeredImage truth = synth::truth_image(128, 128);
   const double sigma = 0.02;  // small: R^2 in the denominator is then T^2 to 0.1 %
-  const LayeredImage a = test::noisy(truth, sigma, rng), b = test::noisy(truth, sigma, rng);
+  const LayeredImage a = synth::noisy(truth, sigma, rng), b = synth::noisy(truth, sigma, rng);
   const double floor = reference_noise_floor(a, b);
   const double z = (floor - analytic_floor(truth, sigma)) / standard_error(a, b);
   EXPECT_LT(std::abs(z), kZ) << "floor " << floor << " analytic " << analytic_floor(truth, sigma);
@@ -49,8 +49,8 @@ TEST(NoiseFloor, MatchesTheAnalyticErrorOfTheMeanOfTwoHalves) {
 
 TEST(NoiseFloor, PredictsTheReferencesRealError) {
   std::mt19937_64 rng(11);
-  const LayeredImage truth = test::truth_image(96, 96);
-  const LayeredImage a = test::noisy(truth, 0.03, rng), b = test::noisy(truth, 0.03, rng);
+  const LayeredImage truth = synth::truth_image(96, 96);
+  const LayeredImage a = synth::noisy(truth, 0.03, rng), b = synth::noisy(truth, 0.03, rng);
   const LayeredImage reference = mean_of_halves(a, b);
   const double real = relative_mse(reference, truth), floor = reference_noise_floor(a, b);
   // Both estimate the same quantity from independent parts of the noise
@@ -61,11 +61,11 @@ TEST(NoiseFloor, PredictsTheReferencesRealError) {
 }
 
 TEST(NoiseFloor, IdenticalHalvesHaveNoFloorAndTheMeanIsExact) {
-  const LayeredImage t = test::truth_image(8, 8);
+  const LayeredImage t = synth::truth_image(8, 8);
   EXPECT_EQ(reference_noise_floor(t, t), 0.0);
-  const LayeredImage m = mean_of_halves(test::rgb_image(2, 2, 1), test::rgb_image(2, 2, 3));
+  const LayeredImage m = mean_of_halves(synth::rgb_image(2, 2, 1), synth::rgb_image(2, 2, 3));
   for (float v : m.pixels) EXPECT_EQ(v, 2.0f);
-  EXPECT_THROW(mean_of_halves(test::rgb_image(2, 2), test::rgb_image(3, 2)),
+  EXPECT_THROW(mean_of_halves(synth::rgb_image(2, 2), synth::rgb_image(3, 2)),
                std::invalid_argument);
 }
 

@@ -12,9 +12,9 @@ namespace {
 
 TEST(ReferenceAgreement, TwoNoisyRendersOfOnePictureAgree) {
   std::mt19937_64 rng(3);
-  const LayeredImage truth = test::truth_image(64, 48);
+  const LayeredImage truth = synth::truth_image(64, 48);
   const ReferenceAgreement a =
-      compare_references(test::noisy(truth, 0.05, rng), test::noisy(truth, 0.05, rng));
+      compare_references(synth::noisy(truth, 0.05, rng), synth::noisy(truth, 0.05, rng));
   EXPECT_FALSE(a.flagged) << (a.reasons.empty() ? "" : a.reasons[0]);
   EXPECT_NEAR(a.mean_ratio, 1.0, 0.01);
   EXPECT_EQ(a.blocks, 4 * 3);
@@ -24,7 +24,7 @@ TEST(ReferenceAgreement, TwoNoisyRendersOfOnePictureAgree) {
 }
 
 TEST(ReferenceAgreement, AnExactScaleShowsInEveryRatio) {
-  const LayeredImage truth = test::truth_image(40, 40);  // partial edge blocks too
+  const LayeredImage truth = synth::truth_image(40, 40);  // partial edge blocks too
   LayeredImage brighter = truth;
   for (float& v : brighter.pixels) v *= 1.3f;
   const ReferenceAgreement a = compare_references(brighter, truth);
@@ -37,7 +37,7 @@ TEST(ReferenceAgreement, AnExactScaleShowsInEveryRatio) {
 }
 
 TEST(ReferenceAgreement, ALocalDifferenceShowsInTheBlocksNotTheMean) {
-  const LayeredImage truth = test::rgb_image(160, 16, 1.0f);  // 10 blocks in a row
+  const LayeredImage truth = synth::rgb_image(160, 16, 1.0f);  // 10 blocks in a row
   LayeredImage changed = truth;
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x)
@@ -52,14 +52,14 @@ TEST(ReferenceAgreement, ALocalDifferenceShowsInTheBlocksNotTheMean) {
 }
 
 TEST(ReferenceAgreement, DarkBlocksAreLeftOut) {
-  LayeredImage a = test::rgb_image(32, 16, 0.0f), b = test::rgb_image(32, 16, 0.0f);
+  LayeredImage a = synth::rgb_image(32, 16, 0.0f), b = synth::rgb_image(32, 16, 0.0f);
   for (int y = 0; y < 16; ++y)
     for (int x = 16; x < 32; ++x)
       for (size_t c = 0; c < 3; ++c) a.at(x, y, c) = b.at(x, y, c) = 0.5f;
   const ReferenceAgreement r = compare_references(a, b);
   EXPECT_EQ(r.blocks, 1);
   EXPECT_FALSE(r.flagged);
-  EXPECT_THROW(compare_references(a, test::rgb_image(16, 16)), std::invalid_argument);
+  EXPECT_THROW(compare_references(a, synth::rgb_image(16, 16)), std::invalid_argument);
 }
 
 }  // namespace

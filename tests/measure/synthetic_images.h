@@ -5,7 +5,7 @@
 
 #include "renderer/output/layered_image.h"
 
-namespace vesper::measure::test {
+namespace vesper::measure::synth {
 
 inline LayeredImage rgb_image(int w, int h, float value = 0) {
   LayeredImage img;
@@ -35,4 +35,4 @@ inline LayeredImage noisy(const LayeredImage& truth, double sigma_rel, std::mt19
   return img;
 }
 
-}  // namespace vesper::measure::test
+}  // namespace vesper::measure::synth
