@@ -67,7 +67,10 @@ TEST_F(BenchSetTest, ResolvesPathsAndMergesQuickOverrides) {
 }
 
 TEST_F(BenchSetTest, MistakesNameTheirJsonPath) {
-  EXPECT_NE(error(ok_ + R"(, "spp": [1, 4, 2])", "/scenes/0/spp/2").find("increases"),
+  EXPECT_NE(error(R"("name": "a", "path": "s/scene.json", "kind": "surface", "width": 64, )"
+                  R"("height": 48, "spp": [1, 4, 2], "reference_spp": 256)",
+                  "/scenes/0/spp/2")
+                .find("increases"),
             std::string::npos);
   EXPECT_NE(error(R"("name": "a", "path": "s/scene.json", "kind": "surface", "width": 64, )"
                   R"("height": 48, "spp": [1], "reference_spp": 255)",
