@@ -46,9 +46,9 @@ struct Frame {
   }
 };
 
-// "0.01", "1", "100" near 1; "1e-05" far from it.
+// "0.001", "1", "100" near 1; "1e-5" far from it.
 std::string decade_label(int k) {
-  if (k >= -2 && k <= 3) return fmt::format("{:g}", std::pow(10.0, k));
+  if (k >= -3 && k <= 3) return fmt::format("{:g}", std::pow(10.0, k));
   return fmt::format("1e{}", k);
 }
 

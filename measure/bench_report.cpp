@@ -16,9 +16,10 @@ using nlohmann::json;
 // JSON has no infinity or NaN: such a value is null.
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-json time_json(const TargetTime& t) {
+json time_json(const TargetTime& t, double noise_floor) {
   return {
       {"target", t.target},
+      {"reference_limited", reference_limited(noise_floor, t.target)},
       {"seconds", t.time.estimate == TimeEstimate::None ? json(nullptr) : number(t.time.seconds)},
       {"estimate", time_estimate_name(t.time.estimate)}};
 }
@@ -30,7 +31,7 @@ json run_json(const RendererRun& run) {
                      {"render_seconds", number(m.render_seconds)},
                      {"wall_seconds", number(m.wall_seconds)},
                      {"relmse", number(m.relmse)}});
-  for (const TargetTime& t : run.times) times.push_back(time_json(t));
+  for (const TargetTime& t : run.times) times.push_back(time_json(t, run.noise_floor));
   json j = {{"renderer", run.renderer},
             {"reference",
              {{"file", run.reference_file},

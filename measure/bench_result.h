@@ -82,4 +82,11 @@ struct BenchReport {
 // Cycles' on surface scenes and 0.5x on volume scenes.
 inline double goal_ratio(const std::string& kind) { return kind == "volume" ? 0.5 : 0.8; }
 
+// A measured relMSE is the render's error plus the reference's own (its
+// noise floor): once the floor is half the target or more, the time to that
+// target says more about the reference than about the renderer.
+inline bool reference_limited(double noise_floor, double target) {
+  return noise_floor >= 0.5 * target;
+}
+
 }  // namespace vesper::measure

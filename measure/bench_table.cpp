@@ -30,7 +30,9 @@ std::vector<Row> renderer_rows(const BenchReport& report) {
       Row r = {s.name, s.kind, run.renderer,
                run.error.empty() ? (run.reference_cached ? "cache hit" : "rendered") : "failed",
                run.error.empty() ? fmt::format("{:.2g}", run.noise_floor) : "-"};
-      for (const TargetTime& t : run.times) r.push_back(format_time_to_error(t.time));
+      for (const TargetTime& t : run.times)
+        r.push_back(format_time_to_error(t.time) +
+                    (reference_limited(run.noise_floor, t.target) ? " !" : ""));
       r.resize(head.size(), "-");
       rows.push_back(r);
     }
@@ -105,7 +107,9 @@ std::string aligned(const std::vector<Row>& rows) {
 std::string legend() {
   return "Times are render seconds, read off the log-log curve of relMSE against render time. "
          "`~t*`: the curve never reached the target, extrapolated with slope -1; `< t`: already "
-         "the first measurement was below the target. Ratios marked `~` use such a time.\n";
+         "the first measurement was below the target. Ratios marked `~` use such a time. `!`: the "
+         "reference's noise floor is at least half the target, so that time is limited by the "
+         "reference (raise reference_spp).\n";
 }
 
 }  // namespace

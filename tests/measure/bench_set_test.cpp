@@ -49,8 +49,8 @@ TEST_F(BenchSetTest, TheProjectsSetLoadsWithQuickSettings) {
   ASSERT_GE(set.scenes.size(), 6u);
   for (const auto& s : set.scenes) {
     EXPECT_TRUE(fs::is_regular_file(s.path)) << s.path;
-    EXPECT_EQ(s.quick.spp_ladder, (std::vector<int>{1, 2, 4}));
-    EXPECT_EQ(s.quick.reference_spp, 16);
+    EXPECT_EQ(s.quick.spp_ladder, (std::vector<int>{1, 4, 16}));
+    EXPECT_EQ(s.quick.reference_spp, 64);
   }
 }
 
