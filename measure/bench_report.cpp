@@ -33,6 +33,7 @@ json run_json(const RendererRun& run) {
                      {"relmse", number(m.relmse)}});
   for (const TargetTime& t : run.times) times.push_back(time_json(t, run.noise_floor));
   json j = {{"renderer", run.renderer},
+            {"cache_key", run.cache_key},
             {"reference",
              {{"file", run.reference_file},
               {"cache_hit", run.reference_cached},

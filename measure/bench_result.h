@@ -27,6 +27,7 @@ struct TargetTime {
 
 struct RendererRun {
   std::string renderer;
+  std::string cache_key;  // BenchRenderer::cache_key: which build measured
   std::string reference_file;
   bool reference_cached = false;
   double reference_seconds = 0;  // render time of both halves (when it was rendered)

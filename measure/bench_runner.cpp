@@ -124,6 +124,7 @@ void run_scene(SceneResult& s, const std::string& position,
   for (const BenchRenderer& r : renderers) {
     RendererRun run;
     run.renderer = r.name;
+    run.cache_key = r.cache_key;
     std::optional<LayeredImage> ref;
     try {
       ref = measure_renderer(r, ctx, o, ev, run);

@@ -65,6 +65,12 @@ PlotFont::PlotFont() {
     }
 }
 
+PlotFont PlotFont::digits_only() {
+  PlotFont f;
+  f.font_.clear();
+  return f;
+}
+
 void PlotFont::draw(OIIO::ImageBuf& img, int x, int y, const std::string& text, int size,
                     const std::array<float, 3>& colour, TextAlign align) const {
   if (font_.empty()) return draw_digits(img, x, y, text, size, colour, align);

@@ -16,7 +16,8 @@ enum class TextAlign { Left, Center, Right };
 
 class PlotFont {
  public:
-  PlotFont();  // finds the TrueType font, once
+  PlotFont();                     // finds the TrueType font, once
+  static PlotFont digits_only();  // the fallback alone (what a machine without the font gets)
   bool has_truetype() const { return !font_.empty(); }
   // Draws `text` with its baseline at y. Without TrueType, characters the
   // digit font lacks are skipped (numbers always draw).
