@@ -21,7 +21,7 @@ std::vector<Row> renderer_rows(const BenchReport& report) {
   rows.push_back(head);
   for (const SceneResult& s : report.scenes) {
     if (s.skipped) {
-      Row r = {s.name, s.kind, "-", s.note, "-"};
+      Row r = {s.name, s.kind, "-", "skipped (below)", "-"};
       r.resize(head.size(), "-");
       rows.push_back(r);
       continue;
@@ -112,6 +112,14 @@ std::string legend() {
          "reference (raise reference_spp).\n";
 }
 
+// Why scenes were skipped, one line each, after the table (too long for a cell).
+std::string notes(const BenchReport& report, const std::string& bullet) {
+  std::string out;
+  for (const SceneResult& s : report.scenes)
+    if (s.skipped) out += bullet + s.name + ": " + s.note + "\n";
+  return out.empty() ? out : "\n" + out;
+}
+
 }  // namespace
 
 std::string format_time_to_error(const TimeToError& t) {
@@ -129,14 +137,14 @@ std::string format_time_to_error(const TimeToError& t) {
 }
 
 std::string bench_table_markdown(const BenchReport& report) {
-  std::string out = "# vesper bench\n\n" + markdown(renderer_rows(report));
+  std::string out = "# vesper bench\n\n" + markdown(renderer_rows(report)) + notes(report, "- ");
   const std::vector<Row> peers = peer_rows(report);
   if (!peers.empty()) out += "\n" + markdown(peers);
   return out + "\n" + legend();
 }
 
 std::string bench_table_text(const BenchReport& report) {
-  std::string out = aligned(renderer_rows(report));
+  std::string out = aligned(renderer_rows(report)) + notes(report, "");
   const std::vector<Row> peers = peer_rows(report);
   if (!peers.empty()) out += "\n" + aligned(peers);
   return out;
