@@ -201,6 +201,21 @@ struct RegressCommandOptions {
 };
 int run_regress(const RegressCommandOptions& options);
 
+// vesper bench: time against error of the benchmark set, per renderer, with
+// cached references (docs/bench.md). Exit 0 measured, 1 a render or an
+// output failed, 2 bad input (flags, scenes file, a scene).
+struct BenchCommandOptions {
+  std::string output;  // -o DIR
+  std::string scenes = "bench/scenes.json";
+  std::optional<std::string> refs;     // default: $XDG_CACHE_HOME/vesper/bench-refs
+  std::optional<std::string> compare;  // a peer renderer: "cycles"
+  std::optional<int> threads;
+  unsigned long long seed = 1;
+  bool quick = false;
+  bool quiet = false;
+};
+int run_bench(const BenchCommandOptions& options);
+
 // vesper up: a local server and N workers; submit, wait, fetch, composite.
 struct UpCommandOptions {
   std::string config;

@@ -6,12 +6,12 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
-#include <charconv>
 #include <functional>
 #include <memory>
 
 #include "cli/commands.h"
 #include "cli/nearest_name.h"
+#include "cli/number_checks.h"
 #include "cli/progress.h"
 
 namespace vesper::cli {
@@ -36,33 +36,13 @@ class Dispatch {
   std::vector<std::pair<const CLI::App*, std::function<int()>>> runs_;
 };
 
-// CLI11's PositiveNumber / NonNegativeNumber name the whole double range
-// ("not in range 0 to 1797693...", 309 digits) and let "-1" wrap in an
-// unsigned option; these name the bound and refuse signs where they do not fit.
+// Numeric flags whose messages name their bound (cli/number_checks.h says why).
 CLI::Validator at_least(long long min) {
-  return {[min](std::string& s) -> std::string {
-            long long v = 0;
-            const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-            const bool huge = ec == std::errc::result_out_of_range && !s.empty() && s[0] != '-';
-            if (huge) return {};  // the option's own conversion checks its type's range
-            if (ec != std::errc() || end != s.data() + s.size())
-              return "expected a whole number, got '" + s + "'";
-            if (v < min) return "must be at least " + std::to_string(min) + ", got " + s;
-            return {};
-          },
-          ">= " + std::to_string(min)};
+  return {[min](std::string& s) { return check_at_least(s, min); }, ">= " + std::to_string(min)};
 }
 
 CLI::Validator greater_than_zero() {
-  return {[](std::string& s) -> std::string {
-            double v = 0;
-            const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-            if (ec != std::errc() || end != s.data() + s.size())
-              return "expected a number, got '" + s + "'";
-            if (!(v > 0)) return "must be greater than 0, got " + s;
-            return {};
-          },
-          "> 0"};
+  return {[](std::string& s) { return check_greater_than_zero(s); }, "> 0"};
 }
 
 // -q on every command: warnings and errors only, no progress; stdout, which
@@ -425,6 +405,24 @@ void add_regress(CLI::App& app, Dispatch& dispatch) {
   dispatch.on(r, [o] { return run_regress(*o); });
 }
 
+void add_bench(CLI::App& app, Dispatch& dispatch) {
+  auto o = std::make_shared<BenchCommandOptions>();
+  auto* b = app.add_subcommand(
+      "bench", "Measure time against error (relMSE) on the benchmark set (docs/bench.md)");
+  b->add_option("-o,--output", o->output, "Folder for bench.json, bench.csv, table.md, plots")
+      ->required();
+  b->add_flag("--quick", o->quick, "Tiny sizes, short ladders, low-spp references: seconds");
+  b->add_option("--compare", o->compare, "Also measure a peer renderer: cycles");
+  b->add_option("--refs", o->refs,
+                "Reference cache folder (default $XDG_CACHE_HOME/vesper/bench-refs)");
+  b->add_option("--scenes", o->scenes, "The benchmark set (default bench/scenes.json)");
+  b->add_option("--threads", o->threads, "Threads per render (default: all cores)")
+      ->check(at_least(1));
+  b->add_option("--seed", o->seed, "Seed of the measured renders (default 1)")->check(at_least(0));
+  add_quiet(b, &o->quiet);
+  dispatch.on(b, [o] { return run_bench(*o); });
+}
+
 // The deepest subcommand the command line reached (`vesper vdb cloud` -> cloud).
 const CLI::App* innermost(const CLI::App* app) {
   while (!app->get_subcommands().empty()) app = app->get_subcommands().front();
@@ -483,6 +481,7 @@ int main(int argc, char** argv) {
   add_job_commands(app, dispatch);
   add_up(app, dispatch);
   add_regress(app, dispatch);
+  add_bench(app, dispatch);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
