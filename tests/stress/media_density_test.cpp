@@ -54,6 +54,23 @@ VdbMediumDesc grid_box(double density, Vec3d lo, double size, int n = 129) {
   return v;
 }
 
+// A real VDB file: a 64^3 ball of density 1 - r/R in [-0.7, 0.7]^3.
+VdbMediumDesc vdb_ball(const TempDir& dir) {
+  const DenseVolume ball = make_volume(
+      64, 64, 64,
+      [](int i, int j, int k) {
+        const double r = std::hypot(i - 31.5, j - 31.5, k - 31.5) / 31.5;
+        return float(std::max(0.0, 1.0 - r));
+      },
+      1.4 / 64, Vec3d(-0.7));
+  VdbMediumDesc v;
+  v.file = write_volume(dir, "ball.vdb", ball).string();
+  v.density = load_vdb_grid(v.file, "density");
+  v.sigma_a = kSigmaA;
+  v.sigma_s = kSigmaS;
+  return v;
+}
+
 std::string density_name(double density) {
   const int e = int(std::lround(std::log10(density)));
   return "density_1e" + (e < 0 ? "m" + std::to_string(-e) : std::to_string(e));
@@ -89,19 +106,8 @@ class VdbBallDensity : public ::testing::TestWithParam<double> {};
 TEST_P(VdbBallDensity, IsFiniteLitAndBounded) {
   const double density = GetParam();
   const TempDir dir;
-  const DenseVolume ball = make_volume(
-      64, 64, 64,
-      [](int i, int j, int k) {
-        const double r = std::hypot(i - 31.5, j - 31.5, k - 31.5) / 31.5;
-        return float(std::max(0.0, 1.0 - r));
-      },
-      1.4 / 64, Vec3d(-0.7));
-  VdbMediumDesc v;
-  v.file = write_volume(dir, "ball.vdb", ball).string();
-  v.density = load_vdb_grid(v.file, "density");
+  VdbMediumDesc v = vdb_ball(dir);
   v.density_scale = density;
-  v.sigma_a = kSigmaA;
-  v.sigma_s = kSigmaS;
   SceneDescription d = lit_floor();
   d.media.push_back({"ball", v});
   expect_plausible(d, kLightRadiance, density_name(density) + " vdb");
@@ -159,6 +165,22 @@ TEST(LightInsideVdb, PointLightRendersLikeInHomogeneousTwin) {
 }
 TEST(LightInsideVdb, SphereLightRendersLikeInHomogeneousTwin) {
   expect_light_inside_grid(0.1, "sphere light in grid");
+}
+
+// The same lights at the centre of the real VDB ball (density_scale 3:
+// optical depth ~ 1.7 from the centre to the rim): finite, lit, bounded.
+TEST(LightInsideVdb, PointAndSphereLightsInsideAVdbFile) {
+  const TempDir dir;
+  for (double radius : {0.0, 0.1}) {
+    SceneDescription d = lit_floor();
+    d.lights.clear();
+    add_light(d, PointLightDesc{{0, 0, 0}, Rgb(3.f), radius});
+    VdbMediumDesc v = vdb_ball(dir);
+    v.density_scale = 3;
+    d.media.push_back({"ball", v});
+    expect_plausible(d, radius > 0 ? 3.0 / (M_PI * radius * radius) : 0,
+                     "light of radius " + std::to_string(radius) + " in a VDB");
+  }
 }
 
 // Regression test of the density 1e5 finding: 9 voxels in one 16-voxel cell.
