@@ -7,16 +7,16 @@
 // the last cells reach past active.max + 1, so walk() clips rays to the box
 // itself. (Without the clip, a ray through the overhang got the cell's
 // majorant over empty space: null collisions at a rate of density_scale per
-// unit: minutes per tiny image at a density_scale of 1e5; tests/stress.) A cell spanning [a, a+C] on an axis can read voxels a .. a+C (with
-// floor); its max is taken over voxels a-1 .. a+C+1, one voxel of apron on
-// each side, so the bound also holds for points the DDA's floating-point
-// boundaries put a hair into the neighbouring cell.
+// unit, minutes per tiny image at a density_scale of 1e5; tests/stress.)
+// A cell spanning [a, a+C] on an axis can read voxels a .. a+C (with floor); its max is taken over
+// voxels a-1 .. a+C+1, one voxel of apron on each side, so the bound also holds for points the
+// DDA's floating-point boundaries put a hair into the neighbouring cell.
 //
 // walk() emits segments for every cell it crosses, including cells with max 0
 // (the caller sees the gaps as max_density == 0 and skips them), but merges
 // runs of consecutive cells with the same max into one segment, so long empty
 // stretches cost one callback. Segments are contiguous, front to back, and
-// together cover exactly [tmin, tmax] clipped to the grid box.
+// together cover exactly [tmin, tmax] clipped to the support box.
 #include "renderer/volume/majorant_grid.h"
 
 #include <tbb/parallel_for.h>
