@@ -2,18 +2,21 @@
 //
 // Index-space layout. A trilinear sample at p reads voxels floor(p) and
 // floor(p)+1 on each axis, so it can be non-zero only in the open box
-// (active.min - 1, active.max + 1). The majorant grid covers exactly that box,
-// [lo, lo + res*C] with lo = active.min - 1 and C = cell_voxels, with cubic
-// cells. A cell spanning [a, a+C] on an axis can read voxels a .. a+C (with
-// floor); its max is taken over voxels a-1 .. a+C+1, one voxel of apron on
-// each side, so the bound also holds for points the DDA's floating-point
-// boundaries put a hair into the neighbouring cell.
+// (active.min - 1, active.max + 1). The majorant grid covers that box with
+// cubic cells, [lo, lo + res*C] with lo = active.min - 1 and C = cell_voxels;
+// the last cells reach past active.max + 1, so walk() clips rays to the box
+// itself. (Without the clip, a ray through the overhang got the cell's
+// majorant over empty space: null collisions at a rate of density_scale per
+// unit, minutes per tiny image at a density_scale of 1e5; tests/stress.)
+// A cell spanning [a, a+C] on an axis can read voxels a .. a+C (with floor); its max is taken over
+// voxels a-1 .. a+C+1, one voxel of apron on each side, so the bound also holds for points the
+// DDA's floating-point boundaries put a hair into the neighbouring cell.
 //
 // walk() emits segments for every cell it crosses, including cells with max 0
 // (the caller sees the gaps as max_density == 0 and skips them), but merges
 // runs of consecutive cells with the same max into one segment, so long empty
 // stretches cost one callback. Segments are contiguous, front to back, and
-// together cover exactly [tmin, tmax] clipped to the grid box.
+// together cover exactly [tmin, tmax] clipped to the support box.
 #include "renderer/volume/majorant_grid.h"
 
 #include <tbb/parallel_for.h>
@@ -35,6 +38,7 @@ MajorantGrid::MajorantGrid(const DensityGrid& grid, int cell_voxels) {
     res_[a] = int((extent + C - 1) / C);
   }
   lo_ = Vec3(float(lo[0]), float(lo[1]), float(lo[2]));
+  hi_ = Vec3(float(box.max[0] + 1), float(box.max[1] + 1), float(box.max[2] + 1));
   cell_size_ = Vec3(float(C));
   max_.assign(size_t(res_[0]) * res_[1] * res_[2], 0.0f);
 
@@ -69,6 +73,7 @@ MajorantGrid MajorantGrid::global(const DensityGrid& grid) {
   g.lo_ = Vec3(float(box.min[0] - 1), float(box.min[1] - 1), float(box.min[2] - 1));
   g.cell_size_ = Vec3(float(box.max[0] - box.min[0] + 2), float(box.max[1] - box.min[1] + 2),
                       float(box.max[2] - box.min[2] + 2));
+  g.hi_ = g.lo_ + g.cell_size_;
   g.max_ = {std::max(0.0f, grid.max_value())};
   return g;
 }
@@ -76,11 +81,11 @@ MajorantGrid MajorantGrid::global(const DensityGrid& grid) {
 void MajorantGrid::walk(const Vec3& o, const Vec3& d, float tmin, float tmax,
                         const std::function<bool(const MajorantSegment&)>& visit) const {
   if (max_.empty() || !(tmin < tmax)) return;
-  // 1. Clip the ray to the grid box (slab test; zero direction components
-  //    handled explicitly, so no 0 * inf).
+  // 1. Clip the ray to the trilinear support box (slab test; zero direction
+  //    components handled explicitly, so no 0 * inf).
   float t0 = tmin, t1 = tmax;
   for (int a = 0; a < 3; ++a) {
-    const float lo = lo_[a], hi = lo_[a] + cell_size_[a] * float(res_[a]);
+    const float lo = lo_[a], hi = hi_[a];
     if (d[a] == 0.0f) {
       if (!(o[a] >= lo && o[a] <= hi)) return;
       continue;

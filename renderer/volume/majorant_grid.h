@@ -35,6 +35,9 @@ class MajorantGrid {
  private:
   std::array<int, 3> res_{0, 0, 0};
   Vec3 lo_, cell_size_;  // index-space origin and size of a cell
+  // Upper corner of the trilinear support (active.max + 1): the last cells
+  // reach past it, and walk() must not hand out their majorant there.
+  Vec3 hi_;
   std::vector<float> max_;
 };
 

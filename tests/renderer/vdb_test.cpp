@@ -272,14 +272,15 @@ Walked walk_all(const MajorantGrid& mg, const Vec3& o, const Vec3& d, float tmin
   return w;
 }
 
-// The box majorant cells cover: one voxel beyond the active box on each side,
-// rounded up to whole cells.
+// The box walk() covers: the trilinear support, one voxel beyond the active
+// box on each side. The cells (whole cells from lo) may reach past its upper
+// side; walk() clips there (tests/stress/README.md, finding 1).
 void grid_box(const DensityGrid& g, const MajorantGrid& mg, int cell, double lo[3], double hi[3]) {
   const IndexBox b = g.active_box();
   const int res[3] = {mg.cells_x(), mg.cells_y(), mg.cells_z()};
   for (int a = 0; a < 3; ++a) {
     lo[a] = b.min[a] - 1;
-    hi[a] = lo[a] + double(res[a]) * cell;
+    hi[a] = std::min(lo[a] + double(res[a]) * cell, double(b.max[a] + 1));
   }
 }
 

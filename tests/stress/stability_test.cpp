@@ -1,52 +1,14 @@
-// Numerical stability: the same scene at very different scales and far from
+// Numerical stability (moved here from tests/renderer/ into the stress suite):
+// the same scene at very different scales and far from
 // the origin renders the same image within noise; degenerate input renders
 // finite images.
 #include <gtest/gtest.h>
 
-#include "render_stats.h"
-#include "scene_fixtures.h"
+#include "scene_transform.h"
+#include "stress_checks.h"
 
 namespace vesper::test {
 namespace {
-
-// Applies p -> p * scale + offset to everything positional in the scene.
-SceneDescription transformed(SceneDescription d, double scale, Vec3d offset) {
-  auto pt = [&](Vec3d& p) { p = p * scale + offset; };
-  auto vec = [&](Vec3d& v) { v = v * scale; };
-  pt(d.camera.from);
-  pt(d.camera.to);
-  for (auto& s : d.shapes)
-    std::visit(
-        [&](auto& g) {
-          using T = std::decay_t<decltype(g)>;
-          if constexpr (std::is_same_v<T, QuadShapeDesc>) {
-            pt(g.corner);
-            vec(g.edge1);
-            vec(g.edge2);
-          } else if constexpr (std::is_same_v<T, SphereShapeDesc>) {
-            pt(g.center);
-            g.radius *= scale;
-          } else {
-            for (auto& p : g.positions) pt(p);
-          }
-        },
-        s.geometry);
-  for (auto& l : d.lights)
-    std::visit(
-        [&](auto& g) {
-          using T = std::decay_t<decltype(g)>;
-          if constexpr (std::is_same_v<T, QuadLightDesc>) {
-            pt(g.corner);
-            vec(g.edge1);
-            vec(g.edge2);
-          } else if constexpr (std::is_same_v<T, PointLightDesc>) {
-            pt(g.position);
-            g.intensity *= float(scale * scale);  // same irradiance at the scaled distance
-          }
-        },
-        l.light);
-  return d;
-}
 
 SceneDescription base_scene() {
   SceneDescription d = small_cornell(32, 32, 8);
@@ -55,15 +17,7 @@ SceneDescription base_scene() {
 }
 
 void expect_same_image(const SceneDescription& a, const SceneDescription& b) {
-  const int batches = 10;
-  const TileStats sa = tile_stats(build_scene(a), batches, 8, 8, 100);
-  const TileStats sb = tile_stats(build_scene(b), batches, 8, 8, 500);
-  const double crit = sidak_t_critical(0.01, int(sa.mean.size()), batches - 1);
-  for (size_t t = 0; t < sa.mean.size(); ++t) {
-    const double se = std::sqrt(sa.se[t] * sa.se[t] + sb.se[t] * sb.se[t]);
-    EXPECT_LT(std::abs(sa.mean[t] - sb.mean[t]) / std::max(se, 1e-9), crit)
-        << "tile " << t << ": " << sa.mean[t] << " vs " << sb.mean[t];
-  }
+  test::expect_same_image(build_scene(a), build_scene(b), "stability");
 }
 
 TEST(Stability, SceneScaledDownBy1e4RendersTheSame) {
