@@ -2,14 +2,17 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "common/sha256.h"
 #include "process/child_process.h"
@@ -38,7 +41,8 @@ std::string blender_version(const std::string& blender) {
   run_to_exit(child);
   const std::string line = first_line(child.stderr_tail());
   if (child.exit_code() != 0 || line.rfind("Blender ", 0) != 0)
-    throw std::runtime_error("cycles: '" + blender + " --version' did not name a Blender version (" +
+    throw std::runtime_error("cycles: '" + blender +
+                             " --version' did not name a Blender version (" +
                              child.describe_status() + "): " + line);
   return line;
 }
@@ -68,8 +72,8 @@ struct CyclesRun {
 
   RenderedImage operator()(const BenchScene& scene, int spp, uint64_t seed, int threads) const {
     static std::atomic<int> counter{0};
-    const std::string stem = scene.name + "-" + std::to_string(::getpid()) + "-" +
-                             std::to_string(counter++);
+    const std::string stem =
+        scene.name + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
     const fs::path exr = work_dir / (stem + ".exr"), stats = work_dir / (stem + ".json");
     std::vector<std::string> argv = {blender,
                                      "-b",
@@ -111,6 +115,24 @@ struct CyclesRun {
   }
 };
 
+// sha256 over the script and every other .py beside it (its modules), by
+// name, so that editing any of them invalidates cached Cycles references.
+std::optional<std::string> translation_hash(const fs::path& script) {
+  std::error_code ec;
+  if (!fs::is_regular_file(script, ec)) return std::nullopt;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(script.parent_path(), ec))
+    if (entry.path().extension() == ".py") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  Sha256 all;
+  for (const fs::path& file : files) {
+    const auto hash = sha256_file(file);
+    if (!hash) return std::nullopt;
+    all.update(file.filename().string() + " " + *hash + "\n");
+  }
+  return all.hex();
+}
+
 }  // namespace
 
 std::string find_executable(const std::string& blender) {
@@ -131,16 +153,16 @@ std::string find_executable(const std::string& blender) {
 BenchRenderer cycles_renderer(const CyclesRendererOptions& options) {
   const std::string blender = find_executable(options.blender);
   if (blender.empty()) throw std::runtime_error(missing_blender_message(options.blender));
-  const auto script_hash = sha256_file(options.script);
+  const auto script_hash = translation_hash(fs::absolute(options.script));
   if (!script_hash)
     throw std::runtime_error("cycles: cannot read the translation script '" + options.script +
                              "' (bench/cycles/vesper_to_cycles.py)");
   fs::create_directories(options.work_dir);
   BenchRenderer renderer;
   renderer.name = "cycles";
-  renderer.cache_key = blender_version(blender) + " script sha256 " + *script_hash;
-  renderer.render = CyclesRun{blender, fs::absolute(options.script).string(),
-                              fs::absolute(options.work_dir)};
+  renderer.cache_key = blender_version(blender) + " translation sha256 " + *script_hash;
+  renderer.render =
+      CyclesRun{blender, fs::absolute(options.script).string(), fs::absolute(options.work_dir)};
   return renderer;
 }
 

@@ -16,11 +16,11 @@ struct CyclesRendererOptions {
   std::string work_dir;             // where the per-render EXR and stats JSON go (created)
 };
 
-// name "cycles"; cache_key = `blender --version`'s first line + the script's
-// sha256 (queried once, here). Throws std::runtime_error when blender is
-// missing (saying how to install it) or the script cannot be read. render()
-// throws std::runtime_error naming the scene, "cycles", the exit status and
-// the stderr tail when blender fails or refuses the scene.
+// name "cycles"; cache_key = `blender --version`'s first line + a sha256 of
+// the script and the modules beside it (queried once, here). Throws std::runtime_error when blender
+// is missing (saying how to install it) or the script cannot be read. render() throws
+// std::runtime_error naming the scene, "cycles", the exit status and the stderr tail when blender
+// fails or refuses the scene.
 BenchRenderer cycles_renderer(const CyclesRendererOptions& options);
 
 // The executable `blender` names: itself if it holds a '/', else the first

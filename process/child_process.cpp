@@ -20,8 +20,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 }
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv, size_t tail_bytes,
-                           ChildStdout out)
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, size_t tail_bytes, ChildStdout out)
     : tail_bytes_(tail_bytes) {
   if (argv.empty()) throw std::invalid_argument("ChildProcess: empty argv");
   int fds[2];

@@ -39,8 +39,8 @@ BenchScene write_scene(const std::string& name, const std::string& json, int siz
   return BenchScene{name, path.string(), "surface", size, size};
 }
 
-#define SKIP_WITHOUT_BLENDER()                                                              \
-  if (find_executable("blender").empty())                                                  \
+#define SKIP_WITHOUT_BLENDER()            \
+  if (find_executable("blender").empty()) \
   GTEST_SKIP() << "blender is not installed (benchmark-only peer: scripts/setup --peers)"
 
 // A camera 2 units above an endless grey floor (albedo 0.5), looking down,
@@ -105,7 +105,8 @@ TEST(CyclesRenderer, SunAndSkyOnADiffuseFloorMatchTheAnalyticRadiance) {
     // A floor for the standard error: a noiseless image is exact to float rounding.
     const double se = std::max(std::sqrt(var / (n - 1)), 1e-6 * expected);
     EXPECT_LT(std::abs(mean - expected) / se, kZCritical)
-        << "channel " << "RGB"[c] << ": mean " << mean << ", analytic " << expected << ", se " << se;
+        << "channel "
+        << "RGB"[c] << ": mean " << mean << ", analytic " << expected << ", se " << se;
   }
 }
 
@@ -149,13 +150,15 @@ TEST(CyclesRenderer, SpotLightOnADiffuseFloorMatchesTheAnalyticRadiance) {
       diff += r.image.at(i, j, size_t(channel)) - m;
     }
   const double mean_diff = diff / (n * n), se = std::sqrt(var_sum) / (n * n);
-  EXPECT_LT(std::abs(mean_diff) / se, kZCritical) << "mean difference " << mean_diff << ", se " << se;
+  EXPECT_LT(std::abs(mean_diff) / se, kZCritical)
+      << "mean difference " << mean_diff << ", se " << se;
 }
 
 TEST(CyclesRenderer, AnUntranslatableSceneThrowsNamingTheJsonPath) {
   SKIP_WITHOUT_BLENDER();
   const BenchRenderer cycles = cycles_renderer(options("keyed"));
-  std::string json = floor_scene(R"({"type": "sun", "direction": [0, 1, 0], "irradiance": [1, 1, 1]})");
+  std::string json =
+      floor_scene(R"({"type": "sun", "direction": [0, 1, 0], "irradiance": [1, 1, 1]})");
   const std::string fov = "\"fov\": 60";
   json.replace(json.find(fov), fov.size(), R"("fov": {"keys": [[1, 40], [24, 60]]})");
   const BenchScene scene = write_scene("keyed", json, 16);
