@@ -1,8 +1,10 @@
 # Shapes of a vesper-scene/1 file as Cycles objects: quads and meshes (OBJ,
-# PLY or inline, transformed per docs/scene-format.md "Transforms"), spheres.
+# PLY or inline, transformed per docs/scene-format.md "Transforms"), spheres
+# (exact point-cloud spheres; finely tessellated ones for glass).
 import os
 import struct
 
+import bmesh
 import bpy
 from mathutils import Vector
 
@@ -77,8 +79,15 @@ def read_ply(path):
     return positions, triangles
 
 
-def add_sphere(name, center, radius, material):
-    # A one-point point cloud renders as an exact sphere in Cycles 3.4.
+# Segments of the tessellated sphere used for glass: its silhouette is within
+# (pi / 256)^2 / 2 = 7.5e-5 of the radius, and smooth shading restores the normals.
+GLASS_SPHERE_SEGMENTS = 256
+
+
+def add_point_sphere(name, center, radius, material):
+    # A one-point point cloud renders as an exact sphere in Cycles 3.4, but a
+    # ray leaving its surface skips the point itself: refracted rays never meet
+    # the far side (glass came out ~10 % bright, bench/cycles/README.md).
     tree = bpy.data.node_groups.new(name, "GeometryNodeTree")
     tree.outputs.new("NodeSocketGeometry", "Geometry")
     points = tree.nodes.new("GeometryNodePoints")
@@ -95,6 +104,20 @@ def add_sphere(name, center, radius, material):
     bpy.context.scene.collection.objects.link(obj)
 
 
+def add_mesh_sphere(name, center, radius, material):
+    mesh = bpy.data.meshes.new(name)
+    bm = bmesh.new()
+    bmesh.ops.create_uvsphere(bm, u_segments=GLASS_SPHERE_SEGMENTS, v_segments=GLASS_SPHERE_SEGMENTS // 2,
+                              radius=radius)
+    bm.to_mesh(mesh)
+    bm.free()
+    mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
+    mesh.materials.append(material)
+    obj = bpy.data.objects.new(name, mesh)
+    obj.location = to_blender(center)
+    bpy.context.scene.collection.objects.link(obj)
+
+
 def add_shapes(doc, materials, scene_dir):
     for i, s in enumerate(doc["shapes"]):
         ptr = f"/shapes/{i}"
@@ -105,6 +128,8 @@ def add_shapes(doc, materials, scene_dir):
             add_mesh_object(f"quad{i}", quad_positions(s), [(0, 1, 2, 3)], material)
         elif kind == "sphere":
             check_keys(s, ptr, {"type", "center", "radius", "material", "name"})
+            transmissive = doc["materials"][s["material"]].get("type") == "dielectric"
+            add_sphere = add_mesh_sphere if transmissive else add_point_sphere
             add_sphere(f"sphere{i}", s["center"], s["radius"], material)
         elif kind == "mesh":
             check_keys(s, ptr, {"type", "file", "positions", "indices", "transform", "material", "name"})
