@@ -138,7 +138,10 @@ def add_shapes(doc, materials, scene_dir):
                 if "#" in os.path.basename(s["file"]):
                     raise SceneError(f"{ptr}/file", "per-frame file sequences are not translated")
                 reader = read_ply if path.lower().endswith(".ply") else read_obj
-                positions, tris = reader(path)
+                try:
+                    positions, tris = reader(path)
+                except (OSError, ValueError, KeyError, IndexError, struct.error) as e:
+                    raise SceneError(f"{ptr}/file", f"cannot read mesh file '{path}': {e}") from e
             else:
                 p, idx = s["positions"], s["indices"]
                 positions = [p[k:k + 3] for k in range(0, len(p), 3)]

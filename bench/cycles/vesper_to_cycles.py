@@ -15,6 +15,7 @@ import os
 import struct
 import sys
 import time
+import traceback
 
 import bpy
 from mathutils import Matrix, Vector
@@ -156,7 +157,7 @@ def parse_args():
     return args
 
 
-def main():
+def translate_and_render():
     args = parse_args()
     try:
         with open(args.scene, encoding="utf-8") as f:
@@ -184,6 +185,14 @@ def main():
             json.dump(stats, f, indent=2)
 
     write_atomically(args.stats, dump)
+
+
+def main():
+    try:
+        translate_and_render()
+    except Exception:  # a bug, or Blender failing: never exit 0 without the outputs
+        traceback.print_exc()
+        sys.exit(1)
 
 
 if __name__ == "__main__":
