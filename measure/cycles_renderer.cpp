@@ -106,7 +106,12 @@ struct CyclesRun {
       throw std::runtime_error("cycles: scene '" + scene.name + "' (" + scene.scene_path +
                                "): blender failed (" + child.describe_status() +
                                "); stderr tail:\n" + child.stderr_tail());
-    RenderedImage result = read_outputs(exr, stats, scene);
+    RenderedImage result;
+    try {
+      result = read_outputs(exr, stats, scene);
+    } catch (const ImageIoError& e) {
+      throw std::runtime_error("cycles: scene '" + scene.name + "': " + e.what());
+    }
     result.wall_seconds = wall;
     std::error_code ignored;
     fs::remove(exr, ignored);
