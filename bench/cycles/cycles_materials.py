@@ -29,14 +29,46 @@ def burley_albedo(roughness, cos_o, frostbite, n=24):
     return total / (n * n)
 
 
-def diffuse_energy_ratio(roughness, n=16):
-    """Vesper's over Cycles' Burley albedo, both cosine-averaged over the view direction."""
-    vesper = cycles = 0.0
-    for k in range(n):
-        cos_o = math.sqrt((k + 0.5) / n)  # cosine-weighted view directions
-        vesper += burley_albedo(roughness, cos_o, True)
-        cycles += burley_albedo(roughness, cos_o, False)
-    return vesper / cycles
+# View cosines at which the albedo ratio is tabulated for the curve below.
+RATIO_COSINES = (0.0, 0.05, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0)
+
+
+def diffuse_energy_ratio(roughness, cos_o):
+    """Vesper's over Cycles' Burley albedo for the view cosine cos_o."""
+    cos_o = max(cos_o, 0.01)
+    return burley_albedo(roughness, cos_o, True) / burley_albedo(roughness, cos_o, False)
+
+
+def compensated_base_color(tree, base_color, roughness):
+    """base_color * ratio(|Incoming . Normal|): a socket for the Base Color input.
+
+    Matches Vesper's diffuse albedo for every view direction (a curve through
+    the ratio at RATIO_COSINES), not only on average.
+    """
+    nodes, links = tree.nodes, tree.links
+    geometry = nodes.new("ShaderNodeNewGeometry")
+    cosine = nodes.new("ShaderNodeVectorMath")
+    cosine.operation = "DOT_PRODUCT"
+    links.new(geometry.outputs["Incoming"], cosine.inputs[0])
+    links.new(geometry.outputs["Normal"], cosine.inputs[1])
+    magnitude = nodes.new("ShaderNodeMath")
+    magnitude.operation = "ABSOLUTE"
+    links.new(cosine.outputs["Value"], magnitude.inputs[0])
+    curve = nodes.new("ShaderNodeFloatCurve")
+    points = curve.mapping.curves[0].points
+    ratios = [diffuse_energy_ratio(roughness, c) for c in RATIO_COSINES]
+    points[0].location, points[1].location = (0.0, ratios[0]), (1.0, ratios[-1])
+    for c, r in zip(RATIO_COSINES[1:-1], ratios[1:-1]):
+        points.new(c, r)
+    for point in points:
+        point.handle_type = "VECTOR"  # piecewise linear: no overshoot between samples
+    curve.mapping.update()
+    links.new(magnitude.outputs[0], curve.inputs["Value"])
+    scaled = nodes.new("ShaderNodeVectorMath")
+    scaled.operation = "SCALE"
+    scaled.inputs[0].default_value = base_color
+    links.new(curve.outputs["Value"], scaled.inputs["Scale"])
+    return scaled.outputs["Vector"]
 
 
 def principled_node(nodes, base_color, metallic, roughness):
@@ -75,14 +107,16 @@ def translate_material(name, m, ptr):
         node = principled_node(nodes, f0, 1.0, m.get("roughness", 0.0))
     elif kind == "principled":
         # Approximate diffuse: Cycles' Burley lacks Vesper's Frostbite energy
-        # renormalisation (Vesper's lobe reflects 75-87 % of Cycles'). A
+        # renormalisation (Vesper's lobe reflects 66-95 % of Cycles'). A
         # dielectric's base colour only tints the diffuse lobe, so it is scaled
-        # by the ratio of the two lobes' albedos; a metallic one is left as is.
+        # by the ratio of the two lobes' albedos for the view direction; a
+        # metallic one is left as is.
         check_keys(m, ptr, {"type", "base_color", "metallic", "roughness"})
         base, metallic, roughness = m.get("base_color", [0.8] * 3), m.get("metallic", 0.0), m.get("roughness", 0.5)
-        if metallic == 0:
-            base = [c * diffuse_energy_ratio(roughness) for c in base]
         node = principled_node(nodes, base, metallic, roughness)
+        if metallic == 0:
+            links = mat.node_tree.links
+            links.new(compensated_base_color(mat.node_tree, base, roughness), node.inputs["Base Color"])
     else:
         raise SceneError(f"{ptr}/type", f"material type '{kind}' is not translated")
     mat.node_tree.links.new(node.outputs[0], out.inputs["Surface"])
