@@ -15,6 +15,7 @@
 #include "measure/bench_runner.h"
 #include "measure/bench_set.h"
 #include "measure/bench_table.h"
+#include "measure/cycles_renderer.h"
 #include "measure/vesper_renderer.h"
 
 namespace vesper::cli {
@@ -59,18 +60,43 @@ class BenchProgress {
   std::unique_ptr<Progress> bar_;
 };
 
+// bench/cycles/vesper_to_cycles.py: beside the working folder's bench/ (run
+// from the repository root, as --scenes' default), else the source tree the
+// executable was built in (build/cli/vesper -> ../../bench).
+std::optional<fs::path> find_cycles_script() {
+  const fs::path rel = "bench/cycles/vesper_to_cycles.py";
+  std::vector<fs::path> candidates{fs::current_path() / rel};
+  std::error_code ec;
+  if (const fs::path exe = fs::read_symlink("/proc/self/exe", ec); !ec)
+    candidates.push_back(exe.parent_path() / "../.." / rel);
+  for (const fs::path& c : candidates)
+    if (fs::is_regular_file(c, ec)) return fs::weakly_canonical(c, ec);
+  return std::nullopt;
+}
+
 // The peer named by --compare, or an exit code when there is none to run.
-std::optional<int> add_peer(const std::string& name,
-                            [[maybe_unused]] std::vector<BenchRenderer>& renderers) {
+std::optional<int> add_peer(const std::string& name, const fs::path& out,
+                            std::vector<BenchRenderer>& renderers) {
   if (name != "cycles") {
     spdlog::error("--compare {}: unknown renderer (accepted: {})", name, kPeers);
     return kBadInput;
   }
-  // MERGE POINT (issue 14): the lead replaces the two lines below with
-  //   renderers.push_back(measure::cycles_renderer(measure::CyclesRendererOptions{...}));
-  // (#include "measure/cycles_renderer.h") once measure/cycles_renderer.{h,cpp} land.
-  spdlog::error("--compare cycles: not built in yet (measure/cycles_renderer is not merged)");
-  return kBadInput;
+  const auto script = find_cycles_script();
+  if (!script) {
+    spdlog::error(
+        "--compare cycles: bench/cycles/vesper_to_cycles.py not found in {} or beside "
+        "the vesper executable's source tree; run vesper bench from the repository root",
+        fs::current_path().string());
+    return kBadInput;
+  }
+  try {
+    renderers.push_back(measure::cycles_renderer(
+        {.script = script->string(), .work_dir = (out / "cycles-work").string()}));
+  } catch (const std::exception& e) {
+    spdlog::error("--compare cycles: {}", e.what());
+    return kBadInput;
+  }
+  return std::nullopt;
 }
 
 // -o must be a folder we can create or reuse.
@@ -120,7 +146,7 @@ int run_bench(const BenchCommandOptions& o) {
   vo.on_progress = [&progress](size_t d, size_t t) { progress.update(d, t); };
   std::vector<BenchRenderer> renderers{measure::vesper_renderer(vo)};
   if (o.compare)
-    if (const auto code = add_peer(*o.compare, renderers)) return *code;
+    if (const auto code = add_peer(*o.compare, o.output, renderers)) return *code;
   measure::BenchSet set;
   try {
     set = measure::load_bench_set(o.scenes);

@@ -20,7 +20,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 }
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv, size_t tail_bytes)
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, size_t tail_bytes, ChildStdout out)
     : tail_bytes_(tail_bytes) {
   if (argv.empty()) throw std::invalid_argument("ChildProcess: empty argv");
   int fds[2];
@@ -31,7 +31,10 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, size_t tail_byt
   posix_spawn_file_actions_init(&fa);
   posix_spawnattr_init(&attr);
   posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  if (out == ChildStdout::into_tail)
+    posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
+  else
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_adddup2(&fa, fds[1], 2);  // dup2 clears FD_CLOEXEC on fd 2
   // Own process group; default signal dispositions and an empty mask in the child.
   sigset_t none, all;

@@ -13,10 +13,16 @@
 
 namespace vesper {
 
+// Where the child's stdout goes: discarded, or into the same tail as stderr
+// (for a tool that answers on stdout, e.g. `blender --version`).
+enum class ChildStdout { discard, into_tail };
+
 class ChildProcess {
  public:
-  // Throws std::runtime_error if the process cannot be started.
-  explicit ChildProcess(const std::vector<std::string>& argv, size_t tail_bytes = 64 * 1024);
+  // Throws std::runtime_error if the process cannot be started. argv[0] is a
+  // path (posix_spawn: no PATH search).
+  explicit ChildProcess(const std::vector<std::string>& argv, size_t tail_bytes = 64 * 1024,
+                        ChildStdout out = ChildStdout::discard);
   ~ChildProcess();  // kills (SIGKILL) and reaps a child still running
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
@@ -33,6 +39,7 @@ class ChildProcess {
   int exit_code() const;
   int term_signal() const;              // 0 unless killed by a signal
   std::string describe_status() const;  // "exit code 2", "killed by signal 11 (Segmentation fault)"
+  // stderr (and stdout with ChildStdout::into_tail), at most tail_bytes.
   const std::string& stderr_tail() const { return tail_; }
   pid_t pid() const { return pid_; }
 
