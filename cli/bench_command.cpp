@@ -75,7 +75,7 @@ std::optional<fs::path> find_cycles_script() {
 }
 
 // The peer named by --compare, or an exit code when there is none to run.
-std::optional<int> add_peer(const std::string& name, const fs::path& out,
+std::optional<int> add_peer(const std::string& name, const fs::path& out, BenchProgress& progress,
                             std::vector<BenchRenderer>& renderers) {
   if (name != "cycles") {
     spdlog::error("--compare {}: unknown renderer (accepted: {})", name, kPeers);
@@ -91,7 +91,9 @@ std::optional<int> add_peer(const std::string& name, const fs::path& out,
   }
   try {
     renderers.push_back(measure::cycles_renderer(
-        {.script = script->string(), .work_dir = (out / "cycles-work").string()}));
+        {.script = script->string(),
+         .work_dir = (out / "cycles-work").string(),
+         .on_progress = [&progress](size_t d, size_t t) { progress.update(d, t); }}));
   } catch (const std::exception& e) {
     spdlog::error("--compare cycles: {}", e.what());
     return kBadInput;
@@ -146,7 +148,7 @@ int run_bench(const BenchCommandOptions& o) {
   vo.on_progress = [&progress](size_t d, size_t t) { progress.update(d, t); };
   std::vector<BenchRenderer> renderers{measure::vesper_renderer(vo)};
   if (o.compare)
-    if (const auto code = add_peer(*o.compare, o.output, renderers)) return *code;
+    if (const auto code = add_peer(*o.compare, o.output, progress, renderers)) return *code;
   measure::BenchSet set;
   try {
     set = measure::load_bench_set(o.scenes);

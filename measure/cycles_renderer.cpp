@@ -8,10 +8,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 #include "common/sha256.h"
@@ -25,10 +27,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr size_t kStderrTailBytes = 4096;  // what an error message quotes
 
-// Runs argv to completion (no time limit: a render takes what it takes).
-void run_to_exit(ChildProcess& child) {
-  while (!child.wait_for(1.0)) {
-  }
+// Runs argv to completion (no time limit: a render takes what it takes),
+// reporting Blender's sample count when asked to.
+void run_to_exit(ChildProcess& child,
+                 const std::function<void(size_t, size_t)>& on_progress = nullptr) {
+  while (!child.wait_for(0.25))
+    if (on_progress)
+      if (const auto [done, total] = last_sample_status(child.stderr_tail()); total > 0)
+        on_progress(done, total);
 }
 
 std::string first_line(const std::string& text) {
@@ -69,6 +75,7 @@ RenderedImage read_outputs(const fs::path& exr, const fs::path& stats, const Ben
 struct CyclesRun {
   std::string blender, script;
   fs::path work_dir;
+  std::function<void(size_t, size_t)> on_progress;
 
   RenderedImage operator()(const BenchScene& scene, int spp, uint64_t seed, int threads) const {
     static std::atomic<int> counter{0};
@@ -99,8 +106,9 @@ struct CyclesRun {
       argv.insert(argv.end(), {"--width", std::to_string(scene.width), "--height",
                                std::to_string(scene.height)});
     const auto start = Clock::now();
-    ChildProcess child(argv, kStderrTailBytes);
-    run_to_exit(child);
+    // stdout too: it carries the "Sample N/M" status lines the progress reads.
+    ChildProcess child(argv, kStderrTailBytes, ChildStdout::into_tail);
+    run_to_exit(child, on_progress);
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
     if (child.exit_code() != 0 || !fs::exists(exr) || !fs::exists(stats))
       throw std::runtime_error("cycles: scene '" + scene.name + "' (" + scene.scene_path +
@@ -140,6 +148,18 @@ std::optional<std::string> translation_hash(const fs::path& script) {
 
 }  // namespace
 
+std::pair<size_t, size_t> last_sample_status(const std::string& output) {
+  constexpr std::string_view kWord = "Sample ";
+  for (size_t at = output.rfind(kWord); at != std::string::npos;
+       at = at == 0 ? std::string::npos : output.rfind(kWord, at - 1)) {
+    size_t done = 0, total = 0;
+    char slash = 0;
+    std::istringstream in(output.substr(at + kWord.size(), 24));
+    if (in >> done >> slash >> total && slash == '/' && total > 0) return {done, total};
+  }
+  return {0, 0};
+}
+
 std::string find_executable(const std::string& blender) {
   const auto executable = [](const fs::path& p) {
     std::error_code ec;
@@ -166,8 +186,8 @@ BenchRenderer cycles_renderer(const CyclesRendererOptions& options) {
   BenchRenderer renderer;
   renderer.name = "cycles";
   renderer.cache_key = blender_version(blender) + " translation sha256 " + *script_hash;
-  renderer.render =
-      CyclesRun{blender, fs::absolute(options.script).string(), fs::absolute(options.work_dir)};
+  renderer.render = CyclesRun{blender, fs::absolute(options.script).string(),
+                              fs::absolute(options.work_dir), options.on_progress};
   return renderer;
 }
 

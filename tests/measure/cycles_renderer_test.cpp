@@ -57,6 +57,21 @@ std::string floor_scene(const std::string& lights) {
          lights + "]}";
 }
 
+// Blender 3.4's status lines (stdout in background mode), as the progress bar reads them.
+TEST(CyclesRenderer, ProgressReadsTheLastSampleStatus) {
+  EXPECT_EQ(last_sample_status(""), (std::pair<size_t, size_t>{0, 0}));
+  EXPECT_EQ(last_sample_status("Fra:1 Mem:8.1M | Time:00:00.10 | Syncing Sphere\n"),
+            (std::pair<size_t, size_t>{0, 0}));
+  const std::string lines =
+      "Fra:1 Mem:18.61M (Peak 19.51M) | Time:00:00.53 | Remaining:00:00.27 | Mem:2.73M, "
+      "Peak:2.73M | Scene, ViewLayer | Sample 40/64\n"
+      "Fra:1 Mem:18.61M (Peak 19.51M) | Time:00:00.61 | Remaining:00:00.19 | Mem:2.73M, "
+      "Peak:2.73M | Scene, ViewLayer | Sample 48/64\n"
+      "Fra:1 Mem:18.61M | Time:00:00.70 | Mem:2.73M | Scene, ViewLayer | Sample 51";
+  EXPECT_EQ(last_sample_status(lines),
+            (std::pair<size_t, size_t>{48, 64}));  // the torn line skipped
+}
+
 TEST(CyclesRenderer, MissingBlenderSaysHowToInstallIt) {
   CyclesRendererOptions o = options("missing");
   for (const std::string blender : {"/nonexistent/blender", "vesper-no-such-blender"}) {
