@@ -25,4 +25,16 @@ class JsonError : public std::runtime_error {
   std::string file_, json_path_, message_;
 };
 
+// Runs `read` and rethrows a JsonError as the format's own error type (a
+// SuiteError, a BenchSetError: JsonErrors with the same three parts), so a
+// caller can tell which kind of file was bad.
+template <class Error, class Read>
+auto rethrow_json_error_as(Read read) -> decltype(read()) {
+  try {
+    return read();
+  } catch (const JsonError& e) {
+    throw Error(e.file(), e.json_path(), e.message());
+  }
+}
+
 }  // namespace vesper

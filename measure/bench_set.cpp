@@ -10,6 +10,7 @@
 
 #include "common/json_parse.h"
 #include "common/json_reader.h"
+#include "common/named_items.h"
 
 namespace vesper::measure {
 namespace {
@@ -110,40 +111,24 @@ BenchSet parse_set(const nlohmann::json& doc, const std::filesystem::path& file)
   BenchSettings quick = builtin_quick();
   if (const auto q = root.optional_child("quick")) quick = parse_quick(*q, quick);
   const JsonReader scenes = root.array("scenes");
-  if (scenes.size() == 0) scenes.fail("expected at least one scene");
   BenchSet set;
   set.path = file;
   const std::filesystem::path base = std::filesystem::absolute(file).parent_path();
-  for (size_t i = 0; i < scenes.size(); ++i) {
-    BenchSetScene scene = parse_scene(scenes.element(i), base, quick);
-    for (size_t j = 0; j < set.scenes.size(); ++j)
-      if (set.scenes[j].name == scene.name)
-        scenes.element(i).fail_key("name", "duplicate scene name \"" + scene.name +
-                                               "\" (already at " +
-                                               json_pointer_append(scenes.path(), j) + ")");
-    set.scenes.push_back(std::move(scene));
-  }
+  set.scenes = read_named_items<BenchSetScene>(
+      scenes, [&](const JsonReader& node) { return parse_scene(node, base, quick); });
   return set;
 }
 
 }  // namespace
 
 BenchSet parse_bench_set_text(const std::string& text, const std::filesystem::path& path) {
-  try {
-    return parse_set(parse_json(text, path.string()), path);
-  } catch (const JsonError& e) {
-    throw BenchSetError(e.file(), e.json_path(), e.message());
-  }
+  return rethrow_json_error_as<BenchSetError>(
+      [&] { return parse_set(parse_json(text, path.string()), path); });
 }
 
 BenchSet load_bench_set(const std::filesystem::path& path) {
-  std::string text;
-  try {
-    text = read_text_file(path, "the benchmark set");
-  } catch (const JsonError& e) {
-    throw BenchSetError(e.file(), e.json_path(), e.message());
-  }
-  return parse_bench_set_text(text, path);
+  return rethrow_json_error_as<BenchSetError>(
+      [&] { return parse_set(read_json_file(path, "the benchmark set"), path); });
 }
 
 }  // namespace vesper::measure

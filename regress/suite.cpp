@@ -10,6 +10,7 @@
 
 #include "common/json_parse.h"
 #include "common/json_reader.h"
+#include "common/named_items.h"
 #include "jobs/frame_range.h"
 
 namespace vesper::regress {
@@ -116,40 +117,24 @@ Suite parse_suite(const nlohmann::json& doc, const std::filesystem::path& file) 
   Thresholds defaults;
   if (const auto t = root.optional_child("thresholds")) defaults = parse_thresholds(*t, defaults);
   const JsonReader scenes = root.array("scenes");
-  if (scenes.size() == 0) scenes.fail("expected at least one scene");
   Suite suite;
   suite.path = file;
   const std::filesystem::path base = std::filesystem::absolute(file).parent_path();
-  for (size_t i = 0; i < scenes.size(); ++i) {
-    SuiteScene scene = parse_scene(scenes.element(i), base, defaults);
-    for (size_t j = 0; j < suite.scenes.size(); ++j)
-      if (suite.scenes[j].name == scene.name)
-        scenes.element(i).fail_key("name", "duplicate scene name \"" + scene.name +
-                                               "\" (already at " +
-                                               json_pointer_append(scenes.path(), j) + ")");
-    suite.scenes.push_back(std::move(scene));
-  }
+  suite.scenes = read_named_items<SuiteScene>(
+      scenes, [&](const JsonReader& node) { return parse_scene(node, base, defaults); });
   return suite;
 }
 
 }  // namespace
 
 Suite parse_suite_text(const std::string& text, const std::filesystem::path& path) {
-  try {
-    return parse_suite(parse_json(text, path.string()), path);
-  } catch (const JsonError& e) {
-    throw SuiteError(e.file(), e.json_path(), e.message());
-  }
+  return rethrow_json_error_as<SuiteError>(
+      [&] { return parse_suite(parse_json(text, path.string()), path); });
 }
 
 Suite load_suite(const std::filesystem::path& path) {
-  std::string text;
-  try {
-    text = read_text_file(path, "the suite file");
-  } catch (const JsonError& e) {
-    throw SuiteError(e.file(), e.json_path(), e.message());
-  }
-  return parse_suite_text(text, path);
+  return rethrow_json_error_as<SuiteError>(
+      [&] { return parse_suite(read_json_file(path, "the suite file"), path); });
 }
 
 }  // namespace vesper::regress
