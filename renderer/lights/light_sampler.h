@@ -74,25 +74,27 @@ class LightSampler {
   // The choice at a shading point; `pmf` is exactly pmf(at, index).
   size_t sample(const ShadingPoint& at, float u, float* pmf, float* u_remapped) const {
     if (mode_ == LightSelection::PowerUniform) return sample(u, pmf, u_remapped);
-    const Sums s = sums(at);
+    const std::vector<float>& imp = importances(at);
+    const Sums s = sums(imp);
     const float target = u * s.total;
     float cum = 0.f;
     size_t last = 0;
     for (size_t i = 0; i < power_.size(); ++i) {
-      const float w = weight(at, i, s);
+      const float w = weight(i, imp[i], s);
       if (!(w > 0.f)) continue;
       last = i;
       if (target < cum + w) return pick(i, w, s.total, (target - cum) / w, pmf, u_remapped);
       cum += w;
     }
     // Rounding left u past the last weight: the last light that has one.
-    const float w = s.total > 0.f ? weight(at, last, s) : 0.f;
+    const float w = s.total > 0.f ? weight(last, imp[last], s) : 0.f;
     return pick(last, w, s.total, 1.f, pmf, u_remapped);
   }
   float pmf(const ShadingPoint& at, size_t light_index) const {
     if (mode_ == LightSelection::PowerUniform) return pmf(light_index);
-    const Sums s = sums(at);
-    return s.total > 0.f ? weight(at, light_index, s) / s.total : 0.f;
+    const std::vector<float>& imp = importances(at);
+    const Sums s = sums(imp);
+    return s.total > 0.f ? weight(light_index, imp[light_index], s) / s.total : 0.f;
   }
 
  private:
@@ -106,26 +108,32 @@ class LightSampler {
     *u_remapped = std::min(u_rest, 0x1.fffffep-1f);
     return i;
   }
-  float base(size_t i) const { return dist_.discrete_pmf(i); }
-  Sums sums(const ShadingPoint& at) const {
+  // Each finite light's importance at `at`, -1 where it provably gives
+  // nothing (or is at infinity), in a per-thread scratch: one evaluation per
+  // light and choice, no allocation once warm.
+  const std::vector<float>& importances(const ShadingPoint& at) const {
+    thread_local std::vector<float> imp;
+    imp.assign(power_.size(), -1.f);
+    for (size_t i = 0; i < power_.size(); ++i)
+      if (bounds_[i] && power_[i] > 0.f)
+        imp[i] = light_importance(*bounds_[i], power_[i], at.p, at.n).value_or(-1.f);
+    return imp;
+  }
+  Sums sums(const std::vector<float>& imp) const {
     Sums s;
-    for (size_t i = 0; i < power_.size(); ++i) {
-      if (!bounds_[i] || !(power_[i] > 0.f)) continue;
-      if (const auto imp = light_importance(*bounds_[i], power_[i], at.p, at.n)) {
-        s.importance += *imp;
+    for (size_t i = 0; i < power_.size(); ++i)
+      if (bounds_[i] && imp[i] >= 0.f) {
+        s.importance += imp[i];
         ++s.reaching;
       }
-    }
-    for (size_t i = 0; i < power_.size(); ++i) s.total += weight(at, i, s);
+    for (size_t i = 0; i < power_.size(); ++i) s.total += weight(i, imp[i], s);
     return s;
   }
-  // Unnormalised weight of light i at `at`, given the finite lights' sums.
-  float weight(const ShadingPoint& at, size_t i, const Sums& s) const {
-    if (!bounds_[i]) return base(i);
-    if (!(power_[i] > 0.f) || s.reaching == 0) return 0.f;
-    const auto imp = light_importance(*bounds_[i], power_[i], at.p, at.n);
-    if (!imp) return 0.f;
-    const float by_importance = s.importance > 0.f ? *imp / s.importance : 1.f / s.reaching;
+  // Unnormalised weight of light i with importance `imp`, given the sums.
+  float weight(size_t i, float imp, const Sums& s) const {
+    if (!bounds_[i]) return dist_.discrete_pmf(i);
+    if (!(imp >= 0.f) || s.reaching == 0) return 0.f;
+    const float by_importance = s.importance > 0.f ? imp / s.importance : 1.f / float(s.reaching);
     return finite_share_ * ((1.f - kFloor) * by_importance + kFloor / float(s.reaching));
   }
 
