@@ -9,8 +9,10 @@
 #include <random>
 
 #include "chi2.h"
+#include "minimal_scene.h"
 #include "render_stats.h"
 #include "renderer/lights/light_sampler.h"
+#include "renderer/scene/scene_loader.h"
 #include "scene_fixtures.h"
 
 namespace vesper {
@@ -181,6 +183,26 @@ TEST(LightSelection, SpatialChoiceMatchesTheAnalyticPlane) {
 }
 TEST(LightSelection, PowerUniformChoiceMatchesTheAnalyticPlane) {
   expect_plane_under_many_lights(LightSelection::PowerUniform);
+}
+
+}  // namespace
+}  // namespace vesper::test
+
+namespace vesper::test {
+namespace {
+
+TEST(LightSelection, SceneKeyDefaultsToSpatialAndRefusesOtherNames) {
+  nlohmann::json doc = minimal_scene();
+  EXPECT_EQ(parse_scene(doc, "x.json").render.light_selection, LightSelection::Spatial);
+  doc["render"]["light_selection"] = "power_uniform";
+  EXPECT_EQ(parse_scene(doc, "x.json").render.light_selection, LightSelection::PowerUniform);
+  doc["render"]["light_selection"] = "nearest";
+  try {
+    parse_scene(doc, "x.json");
+    FAIL() << "an unknown light_selection loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.json_path(), "/render/light_selection") << e.what();
+  }
 }
 
 }  // namespace
