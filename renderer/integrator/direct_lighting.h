@@ -29,16 +29,18 @@ struct DirectSample {
   size_t light = 0;
 };
 
-// One light sample for the point p, at the path's `time`. `eval(wi)` returns {f * |cos| (or phase),
-// its diffuse part, scattering pdf}; `delta_weight(light)` is the MIS weight
-// of this strategy for delta lights (1 unless equiangular sampling competes).
+// One light sample for the point at.p, chosen for `at` (light_sampler.h), at the path's `time`.
+// `eval(wi)` returns {f * |cos| (or phase), its diffuse part, scattering pdf};
+// `delta_weight(light)` is the MIS weight of this strategy for delta lights (1 unless equiangular
+// sampling competes).
 template <bool kMedia, typename Eval, typename DeltaWeight = NoDeltaWeight>
-DirectSample sample_direct(const Scene& scene, const Vec3& p, const Vec3& offset_normal, float time,
-                           Sampler& sampler, uint32_t& rays, const Eval& eval,
+DirectSample sample_direct(const Scene& scene, const ShadingPoint& at, const Vec3& offset_normal,
+                           float time, Sampler& sampler, uint32_t& rays, const Eval& eval,
                            const DeltaWeight& delta_weight = {}) {
   DirectSample out;
+  const Vec3& p = at.p;
   float pmf = 0.f, u_rest = 0.f;
-  const size_t li = scene.light_sampler.sample(sampler.next1(), &pmf, &u_rest);
+  const size_t li = scene.light_sampler.sample(at, sampler.next1(), &pmf, &u_rest);
   const Vec2 u_light = sampler.next2();
   out.light = li;
   if (pmf <= 0.f) return out;

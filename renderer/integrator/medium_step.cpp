@@ -52,11 +52,11 @@ void add_direct_light(PathContext& ctx, const Ray& ray, const std::vector<Majora
     auto delta_weight = [&](size_t li) {
       return power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t));
     };
-    ds = sample_direct<true>(scene, p, Vec3(0.f), ray.time, ctx.sampler, ctx.result.rays,
-                             eval_phase, delta_weight);
+    ds = sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
+                             ctx.result.rays, eval_phase, delta_weight);
   } else {
-    ds = sample_direct<true>(scene, p, Vec3(0.f), ray.time, ctx.sampler, ctx.result.rays,
-                             eval_phase);
+    ds = sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
+                             ctx.result.rays, eval_phase);
   }
   if (!ds.value.is_black()) ctx.add(throughput * ds.value, depth + 1, scene.light_group[ds.light]);
 }
@@ -76,6 +76,7 @@ void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const Fre
   const Vec3 wo = -path.ray.dir;
   const Vec3 wi = phase.sample(wo, ctx.sampler.next2());
   path.prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
+  path.prev_vertex = ShadingPoint{p, Vec3(0.f)};
   path.count_emission_fully = false;
   path.ray = Ray{p, wi, std::numeric_limits<float>::infinity(), path.ray.time};
 }

@@ -11,6 +11,9 @@ struct PathState {
   Rgb throughput{1.f};
   bool count_emission_fully = true;  // camera ray or delta bounce: no MIS partner
   float prev_scatter_pdf = 0.f;      // of the BSDF or phase sample that made `ray`
+  // Where that sample was made, as next-event estimation chose its light
+  // there: a light the ray hits is MIS-weighted with the pmf of that vertex.
+  ShadingPoint prev_vertex{};
 };
 
 struct PathContext {

@@ -28,7 +28,8 @@ void add_light_reached(PathContext& ctx, size_t li, float distance, int depth,
   if (le.is_black()) return;
   float w = 1.f;
   if (!path.count_emission_fully) {
-    const float light_pdf = scene.light_sampler.pmf(li) * light.pdf(path.ray.dir, distance);
+    const float light_pdf =
+        scene.light_sampler.pmf(path.prev_vertex, li) * light.pdf(path.ray.dir, distance);
     w = power_heuristic(path.prev_scatter_pdf, light_pdf);
   }
   ctx.add(path.throughput * le * w, depth, scene.light_group[li]);
@@ -45,11 +46,12 @@ void record_first_hit(PathContext& ctx, const SurfaceHit& hit, const Ray& ray) {
 
 // Next-event estimation at a surface vertex.
 template <bool kMedia>
-void add_direct_light(PathContext& ctx, const SurfaceHit& hit, const Bsdf& bsdf, const Frame& frame,
-                      const Vec3& wo, int depth, const Rgb& throughput, float time) {
+void add_direct_light(PathContext& ctx, const SurfaceHit& hit, const ShadingPoint& at,
+                      const Bsdf& bsdf, const Frame& frame, const Vec3& wo, int depth,
+                      const Rgb& throughput, float time) {
   const bool want_diffuse = ctx.options.record != nullptr;
   const DirectSample ds = sample_direct<kMedia>(
-      ctx.scene, hit.p, hit.n, time, ctx.sampler, ctx.result.rays, [&](const Vec3& wi_world) {
+      ctx.scene, at, hit.n, time, ctx.sampler, ctx.result.rays, [&](const Vec3& wi_world) {
         const Vec3 wi = frame.to_local(wi_world);
         const float cos = std::abs(wi.z);
         return std::tuple{bsdf_eval(bsdf, wo, wi) * cos,
@@ -75,9 +77,12 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   const Frame frame = Frame::from_normal(n_shading);
   const Vec3 wo = frame.to_local(wo_world);
   if (depth == 0 && ctx.options.want_aovs) ctx.result.albedo = bsdf_albedo(bsdf);
+  // An opaque BSDF reflects only on the viewer's side: lights wholly behind
+  // it can be skipped; light through a dielectric may come from anywhere.
+  const ShadingPoint at{hit.p, transmissive ? Vec3(0.f) : n_shading};
 
   if (ctx.have_lights() && !bsdf_is_delta(bsdf)) {
-    add_direct_light<kMedia>(ctx, hit, bsdf, frame, wo, depth, path.throughput, path.ray.time);
+    add_direct_light<kMedia>(ctx, hit, at, bsdf, frame, wo, depth, path.throughput, path.ray.time);
   } else {
     // Keep the sample dimensions aligned whether or not NEE ran.
     ctx.sampler.next1();
@@ -94,6 +99,7 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   path.throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
   path.count_emission_fully = bs->is_specular;
   path.prev_scatter_pdf = bs->pdf;
+  path.prev_vertex = at;
 
   const Vec3 wi_world = normalize(frame.to_world(bs->wi));
   const Vec3 n_off = dot(wi_world, hit.n) >= 0.f ? hit.n : -hit.n;

@@ -2,47 +2,145 @@
 // The choice of a light for next-event estimation.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "renderer/lights/light.h"
+#include "renderer/lights/light_importance.h"
+#include "renderer/lights/light_selection.h"
 #include "renderer/sampling/distribution.h"
 
 namespace vesper {
 
-// Picks a light with probability half proportional to its power, half
-// uniform. Power alone lets a dim fill light take few shadow rays from the
-// key light, but it also starves small nearby lights (candles) next to a sun
-// whose power is counted over the whole scene even when it only enters
-// through a window; the uniform half bounds every light's share from below.
+// Where a light is chosen for: a surface point with the normal of its
+// reflecting side, or (n = 0) a point in a medium or on a transmissive
+// surface. The MIS weight of a BSDF ray that hits a light needs the pmf at
+// the vertex the ray left, so paths keep this (integrator/path_context.h).
+struct ShadingPoint {
+  Vec3 p;
+  Vec3 n;
+};
+
+// PowerUniform picks a light with probability half proportional to its
+// power, half uniform ("base"). Power alone lets a dim fill light take few
+// shadow rays from the key light, but it also starves small nearby lights
+// (candles) next to a sun whose power is counted over the whole scene even
+// when it only enters through a window; the uniform half bounds every light's
+// share from below.
+//
+// Spatial keeps the lights at infinity at their base share and splits the
+// finite lights' base share by their importance at the shading point
+// (light_importance.h): (1 - kFloor) by importance, kFloor evenly over every
+// finite light that may reach the point, so an occluded bright neighbour
+// cannot starve the others. One O(N) pass per choice: fine for tens of
+// lights; many lights want a light tree (future work).
 class LightSampler {
  public:
+  static constexpr float kFloor = 0.1f;
+
   LightSampler() = default;
-  LightSampler(const std::vector<Light>& lights, float scene_radius) {
+  LightSampler(const std::vector<Light>& lights, float scene_radius,
+               LightSelection mode = LightSelection::Spatial)
+      : mode_(mode) {
     if (lights.empty()) return;
-    std::vector<float> power;
-    power.reserve(lights.size());
     double total = 0;
     for (const auto& l : lights) {
       const float p = l.power(scene_radius);
-      power.push_back(std::isfinite(p) && p > 0.f ? p : 0.f);
-      total += power.back();
+      power_.push_back(std::isfinite(p) && p > 0.f ? p : 0.f);
+      bounds_.push_back(l.bounds());
+      total += power_.back();
     }
     std::vector<float> w;
     w.reserve(lights.size());
     // Lights that emit nothing (switched off, zero area) get no samples.
     const size_t emitting =
-        size_t(std::count_if(power.begin(), power.end(), [](float p) { return p > 0.f; }));
-    for (float p : power)
+        size_t(std::count_if(power_.begin(), power_.end(), [](float p) { return p > 0.f; }));
+    for (float p : power_)
       w.push_back(p > 0.f ? float(0.5 * p / total) + 0.5f / float(emitting) : 0.f);
     dist_ = Distribution1D(std::move(w));
+    for (size_t i = 0; i < power_.size(); ++i)
+      if (bounds_[i] && power_[i] > 0.f) finite_share_ += dist_.discrete_pmf(i);
   }
   bool empty() const { return dist_.size() == 0; }
+  LightSelection mode() const { return mode_; }
+
+  // The base choice, the same everywhere (equiangular sampling, which picks
+  // a light for a whole ray).
   size_t sample(float u, float* pmf, float* u_remapped) const {
     return dist_.sample_discrete(u, pmf, u_remapped);
   }
   float pmf(size_t light_index) const { return dist_.discrete_pmf(light_index); }
 
+  // The choice at a shading point; `pmf` is exactly pmf(at, index).
+  size_t sample(const ShadingPoint& at, float u, float* pmf, float* u_remapped) const {
+    if (mode_ == LightSelection::PowerUniform) return sample(u, pmf, u_remapped);
+    const std::vector<float>& imp = importances(at);
+    const Sums s = sums(imp);
+    const float target = u * s.total;
+    float cum = 0.f;
+    size_t last = 0;
+    for (size_t i = 0; i < power_.size(); ++i) {
+      const float w = weight(i, imp[i], s);
+      if (!(w > 0.f)) continue;
+      last = i;
+      if (target < cum + w) return pick(i, w, s.total, (target - cum) / w, pmf, u_remapped);
+      cum += w;
+    }
+    // Rounding left u past the last weight: the last light that has one.
+    const float w = s.total > 0.f ? weight(last, imp[last], s) : 0.f;
+    return pick(last, w, s.total, 1.f, pmf, u_remapped);
+  }
+  float pmf(const ShadingPoint& at, size_t light_index) const {
+    if (mode_ == LightSelection::PowerUniform) return pmf(light_index);
+    const std::vector<float>& imp = importances(at);
+    const Sums s = sums(imp);
+    return s.total > 0.f ? weight(light_index, imp[light_index], s) / s.total : 0.f;
+  }
+
  private:
+  struct Sums {
+    float importance = 0.f;  // of the finite lights
+    int reaching = 0;        // finite lights that may reach the point
+    float total = 0.f;       // of all weights
+  };
+  static size_t pick(size_t i, float w, float total, float u_rest, float* pmf, float* u_remapped) {
+    *pmf = total > 0.f ? w / total : 0.f;
+    *u_remapped = std::min(u_rest, 0x1.fffffep-1f);
+    return i;
+  }
+  // Each finite light's importance at `at`, -1 where it provably gives
+  // nothing (or is at infinity), in a per-thread scratch: one evaluation per
+  // light and choice, no allocation once warm.
+  const std::vector<float>& importances(const ShadingPoint& at) const {
+    thread_local std::vector<float> imp;
+    imp.assign(power_.size(), -1.f);
+    for (size_t i = 0; i < power_.size(); ++i)
+      if (bounds_[i] && power_[i] > 0.f)
+        imp[i] = light_importance(*bounds_[i], power_[i], at.p, at.n).value_or(-1.f);
+    return imp;
+  }
+  Sums sums(const std::vector<float>& imp) const {
+    Sums s;
+    for (size_t i = 0; i < power_.size(); ++i)
+      if (bounds_[i] && imp[i] >= 0.f) {
+        s.importance += imp[i];
+        ++s.reaching;
+      }
+    for (size_t i = 0; i < power_.size(); ++i) s.total += weight(i, imp[i], s);
+    return s;
+  }
+  // Unnormalised weight of light i with importance `imp`, given the sums.
+  float weight(size_t i, float imp, const Sums& s) const {
+    if (!bounds_[i]) return dist_.discrete_pmf(i);
+    if (!(imp >= 0.f) || s.reaching == 0) return 0.f;
+    const float by_importance = s.importance > 0.f ? imp / s.importance : 1.f / float(s.reaching);
+    return finite_share_ * ((1.f - kFloor) * by_importance + kFloor / float(s.reaching));
+  }
+
+  LightSelection mode_ = LightSelection::Spatial;
+  std::vector<float> power_;
+  std::vector<std::optional<LightBounds>> bounds_;
+  float finite_share_ = 0.f;  // base probability of all finite lights together
   Distribution1D dist_;
 };
 

@@ -48,7 +48,7 @@ struct QuadLight {
     const Vec3 far = corner + edge1 + edge2;
     const Vec3 lo = min(min(corner, far), min(corner + edge1, corner + edge2));
     const Vec3 hi = max(max(corner, far), max(corner + edge1, corner + edge2));
-    return LightBounds{lo, hi};
+    return LightBounds{lo, hi, false, normal, 0.f, true};
   }
 };
 

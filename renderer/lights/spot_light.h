@@ -57,7 +57,12 @@ struct SpotLight {
   float power(float /*scene_radius*/) const {
     return intensity.average() * 2.f * kPi * (1.f - 0.5f * (cos_falloff_start + cos_cone));
   }
-  std::optional<LightBounds> bounds() const { return sphere_bounds(position, radius); }
+  std::optional<LightBounds> bounds() const {
+    LightBounds b = sphere_bounds(position, radius);
+    b.axis = direction;
+    b.cos_cone = cos_cone;
+    return b;
+  }
 };
 
 }  // namespace vesper

@@ -195,7 +195,7 @@ Scene build_scene(const SceneDescription& desc, const SceneBuildOptions& options
   add_shapes(desc, space, geometry);
   add_lights(desc, space, scene, geometry);
   assign_light_groups(scene);
-  scene.light_sampler = LightSampler(scene.lights, scene.radius);
+  scene.light_sampler = LightSampler(scene.lights, scene.radius, desc.render.light_selection);
   scene.media = build_media(desc, scene.origin, scene.unit_scale, options.media);
   scene.accel = std::make_unique<Accel>(std::move(geometry.quads), std::move(geometry.spheres),
                                         std::move(geometry.meshes));

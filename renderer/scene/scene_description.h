@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "renderer/lights/light_selection.h"
 #include "renderer/math/rgb.h"
 #include "renderer/math/transform.h"
 #include "renderer/math/vec.h"
@@ -80,6 +81,9 @@ struct RenderDesc {
     double open = 0, close = 0;
   };
   std::optional<Shutter> shutter;
+  // render.light_selection: how next-event estimation picks a light
+  // (lights/light_sampler.h).
+  LightSelection light_selection = LightSelection::Spatial;
 };
 
 struct DiffuseMaterialDesc {

@@ -1,0 +1,209 @@
+// Light selection at a shading point (lights/light_sampler.h): the indices it
+// draws follow the pmf it reports, lights that provably give nothing get no
+// share while every other light keeps one, and renders with either selection
+// match a closed-form irradiance (which a wrong MIS pmf breaks).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <random>
+
+#include "chi2.h"
+#include "minimal_scene.h"
+#include "render_stats.h"
+#include "renderer/lights/light_sampler.h"
+#include "renderer/scene/scene_loader.h"
+#include "scene_fixtures.h"
+
+namespace vesper {
+namespace {
+
+QuadLight make_quad(Vec3 corner, Vec3 e1, Vec3 e2, float radiance) {
+  QuadLight q;
+  q.corner = corner;
+  q.edge1 = e1;
+  q.edge2 = e2;
+  const Vec3 c = cross(e1, e2);
+  q.area = length(c);
+  q.normal = c / q.area;
+  q.radiance = Rgb(radiance);
+  return q;
+}
+
+// Ten small candles on a grid, a quad facing down, a sun.
+std::vector<Light> candle_lights() {
+  std::vector<Light> lights;
+  for (int i = 0; i < 10; ++i)
+    lights.push_back(
+        PointLight{Vec3(float(i % 5) - 2.f, 0.5f, float(i / 5) * 2.f - 1.f), Rgb(1.f), 0.05f});
+  lights.push_back(make_quad(Vec3(-0.5f, 2.f, -0.5f), Vec3(1, 0, 0), Vec3(0, 0, 1), 2.f));
+  SunLight sun;  // only its power matters here
+  sun.direction = Vec3(0, 1, 0);
+  sun.irradiance = Rgb(1.f);
+  lights.push_back(sun);
+  return lights;
+}
+
+TEST(LightSelection, DrawnIndicesFollowThePmf) {
+  // Pearson chi-square of 200000 draws at a point near one candle, alpha = 0.01.
+  const std::vector<Light> lights = candle_lights();
+  const LightSampler s(lights, 10.f, LightSelection::Spatial);
+  const ShadingPoint at{Vec3(-1.8f, 0.f, -0.9f), Vec3(0, 1, 0)};
+  std::vector<double> expected(lights.size()), observed(lights.size(), 0.0);
+  double sum = 0;
+  for (size_t i = 0; i < lights.size(); ++i) sum += expected[i] = s.pmf(at, i);
+  EXPECT_NEAR(sum, 1.0, 1e-5);
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<float> uniform(0.f, 1.f);
+  constexpr int kDraws = 200000;
+  for (int k = 0; k < kDraws; ++k) {
+    float pmf = 0.f, u_rest = 0.f;
+    const size_t i = s.sample(at, uniform(rng), &pmf, &u_rest);
+    ASSERT_EQ(pmf, s.pmf(at, i));  // bit for bit: MIS recomputes it at the vertex
+    ASSERT_GE(u_rest, 0.f);
+    ASSERT_LT(u_rest, 1.f);
+    observed[i] += 1;
+  }
+  double chi2 = 0;
+  int bins = 0;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const double e = expected[i] * kDraws;
+    ASSERT_GT(e, 5.0) << "light " << i;
+    chi2 += (observed[i] - e) * (observed[i] - e) / e;
+    ++bins;
+  }
+  EXPECT_GT(stats::chi2_p_value(chi2, bins - 1), 0.01) << "chi2 " << chi2;
+  // The near candle takes the largest share, more than its base share.
+  EXPECT_GT(expected[0], 2.0 * s.pmf(0));
+}
+
+TEST(LightSelection, OnlyProvablyDarkLightsGetNothing) {
+  std::vector<Light> lights;
+  lights.push_back(PointLight{Vec3(0, 1, 0), Rgb(1.f)});      // above the surface
+  lights.push_back(PointLight{Vec3(0, -1, 0), Rgb(1.f)});     // behind it
+  lights.push_back(PointLight{Vec3(5, 0.01f, 0), Rgb(1.f)});  // just above the horizon
+  lights.push_back(make_quad(Vec3(-1, 3, -1), Vec3(0, 0, 2), Vec3(2, 0, 0), 1.f));  // faces up
+  lights.push_back(make_quad(Vec3(-1, 3, -1), Vec3(2, 0, 0), Vec3(0, 0, 2), 1.f));  // faces down
+  lights.push_back(PointLight{Vec3(0, 1, 0), Rgb(0.f)});                            // switched off
+  const LightSampler s(lights, 10.f, LightSelection::Spatial);
+  const ShadingPoint surface{Vec3(0.f), Vec3(0, 1, 0)};
+  EXPECT_GT(s.pmf(surface, 0), 0.f);
+  EXPECT_EQ(s.pmf(surface, 1), 0.f);
+  EXPECT_GT(s.pmf(surface, 2), 0.01f);  // the floor share, though it is far and grazing
+  EXPECT_EQ(s.pmf(surface, 3), 0.f);
+  EXPECT_GT(s.pmf(surface, 4), 0.f);
+  EXPECT_EQ(s.pmf(surface, 5), 0.f);
+  // In a medium (no normal) the light behind is back.
+  EXPECT_GT(s.pmf(ShadingPoint{Vec3(0.f), Vec3(0.f)}, 1), 0.f);
+}
+
+}  // namespace
+}  // namespace vesper
+
+namespace vesper::test {
+namespace {
+
+// Irradiance at p on the plane y = 0 (normal +y) from a Lambertian polygon of
+// radiance L (Lambert 1760; Arvo 1995), as in analytic_test.cpp.
+double polygon_irradiance(const Vec3d& p, const std::array<Vec3d, 4>& verts, double L) {
+  double sum = 0;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3d a = normalize(verts[size_t(i)] - p), b = normalize(verts[size_t((i + 1) % 4)] - p);
+    const double angle = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
+    sum += angle * normalize(cross(a, b)).y;
+  }
+  return 0.5 * L * std::abs(sum);
+}
+
+// A diffuse plane y = 0 under a quad light, six small sphere candles (one
+// below the plane) and a dim sun, rendered with `mode`: each 4x4 tile's mean
+// must match rho/pi * E(x) (Lambert's polygon formula for the quad, I cos /
+// d^2 for each candle wholly above the horizon, E cos for the sun) by a
+// Sidak-corrected t-test at family-wise alpha = 0.01. The quad is hit by
+// BSDF rays, so its MIS weight must use the pmf of the vertex they left.
+void expect_plane_under_many_lights(LightSelection mode) {
+  constexpr double rho = 0.6, L = 3.0, I = 0.4, E_sun = 0.5;
+  SceneDescription d = empty_scene(24, 24, 8, 1);
+  d.render.light_selection = mode;
+  d.film.filter = FilterType::Box;
+  d.camera.from = {0.1, 0.9, 0.2};
+  d.camera.to = {0.1, 0, 0.2};
+  d.camera.up = {0, 0, -1};
+  d.camera.fov_degrees = 80;
+  add_quad(d, {-50, 0, 50}, {100, 0, 0}, {0, 0, -100},
+           add_material(d, "plane", DiffuseMaterialDesc{Rgb(float(rho))}));
+  const Vec3d corner{-0.5, 1, -0.5}, e1{1, 0, 0}, e2{0, 0, 1};
+  add_light(d, QuadLightDesc{corner, e1, e2, Rgb(float(L))});
+  const std::array<Vec3d, 4> verts{corner, corner + e1, corner + e1 + e2, corner + e2};
+  const std::array<Vec3d, 6> candles{{{-0.6, 0.2, -0.5},
+                                      {0.5, 0.15, 0.6},
+                                      {0.7, 0.3, -0.4},
+                                      {-0.3, 0.25, 0.7},
+                                      {3, 0.3, 3},
+                                      {0.2, -0.3, 0.1}}};
+  for (const Vec3d& c : candles) add_light(d, PointLightDesc{c, Rgb(float(I)), 0.02});
+  // Tilted so that the quad light's shadow falls outside the view.
+  const Vec3d sun = normalize(Vec3d(2, 1, 0));
+  add_light(d, SunLightDesc{sun, Rgb(float(E_sun)), 0.5});
+  const Scene scene = build_scene(d);
+  auto irradiance = [&](const Vec3d& x) {
+    double e = E_sun * sun.y + polygon_irradiance(x, verts, L);
+    for (const Vec3d& c : candles)
+      if (c.y > 0) e += I * (c.y - x.y) / std::pow(length(c - x), 3.0);
+    return e;
+  };
+  auto expected_pixel = [&](int x, int y) {
+    double sum = 0;
+    for (int sy = 0; sy < 8; ++sy)
+      for (int sx = 0; sx < 8; ++sx) {
+        const Ray r =
+            scene.camera.generate_ray(x + (sx + 0.5f) / 8.f, y + (sy + 0.5f) / 8.f, {0.5f, 0.5f});
+        const Vec3d o = Vec3d(r.origin) * scene.unit_scale + scene.origin, dir(r.dir);
+        sum += rho / M_PI * irradiance(o + dir * (-o.y / dir.y));
+      }
+    return sum / 64.0;
+  };
+  const int tile = 4;
+  const TileStats st = tile_stats(scene, 16, 16, tile);
+  const double crit = sidak_t_critical(0.01, int(st.mean.size()), st.batches - 1);
+  for (int ty = 0; ty < st.tiles_y; ++ty)
+    for (int tx = 0; tx < st.tiles_x; ++tx) {
+      double expect = 0;
+      for (int y = ty * tile; y < (ty + 1) * tile; ++y)
+        for (int x = tx * tile; x < (tx + 1) * tile; ++x) expect += expected_pixel(x, y);
+      expect /= tile * tile;
+      const size_t t = size_t(ty * st.tiles_x + tx);
+      EXPECT_LT(std::abs(st.mean[t] - expect) / st.se[t], crit)
+          << "tile " << tx << "," << ty << " rendered " << st.mean[t] << " analytic " << expect;
+    }
+}
+
+TEST(LightSelection, SpatialChoiceMatchesTheAnalyticPlane) {
+  expect_plane_under_many_lights(LightSelection::Spatial);
+}
+TEST(LightSelection, PowerUniformChoiceMatchesTheAnalyticPlane) {
+  expect_plane_under_many_lights(LightSelection::PowerUniform);
+}
+
+}  // namespace
+}  // namespace vesper::test
+
+namespace vesper::test {
+namespace {
+
+TEST(LightSelection, SceneKeyDefaultsToSpatialAndRefusesOtherNames) {
+  nlohmann::json doc = minimal_scene();
+  EXPECT_EQ(parse_scene(doc, "x.json").render.light_selection, LightSelection::Spatial);
+  doc["render"]["light_selection"] = "power_uniform";
+  EXPECT_EQ(parse_scene(doc, "x.json").render.light_selection, LightSelection::PowerUniform);
+  doc["render"]["light_selection"] = "nearest";
+  try {
+    parse_scene(doc, "x.json");
+    FAIL() << "an unknown light_selection loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.json_path(), "/render/light_selection") << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace vesper::test
