@@ -13,16 +13,16 @@ namespace vesper::measure {
 
 // One scene of the benchmark set (bench/scenes.json), resolved.
 struct BenchScene {
-  std::string name;        // unique in the set, e.g. "fog-shafts"
-  std::string scene_path;  // absolute path of the vesper-scene/1 file
-  std::string kind;        // "surface" or "volume" (which Cycles goal applies)
+  std::string name;           // unique in the set, e.g. "fog-shafts"
+  std::string scene_path;     // absolute path of the vesper-scene/1 file
+  std::string kind;           // "surface" or "volume" (which Cycles goal applies)
   int width = 0, height = 0;  // the film size measured (overrides film.width/height)
 };
 
 struct RenderedImage {
-  LayeredImage image;          // R, G, B at least (scene-linear, no alpha needed)
-  double render_seconds = 0;   // the renderer's own time for the samples (no start-up, no I/O)
-  double wall_seconds = 0;     // everything the caller waited for (process start, load, BVH, write)
+  LayeredImage image;         // R, G, B at least (scene-linear, no alpha needed)
+  double render_seconds = 0;  // the renderer's own time for the samples (no start-up, no I/O)
+  double wall_seconds = 0;    // everything the caller waited for (process start, load, BVH, write)
 };
 
 struct BenchRenderer {
