@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "analytic_plane.h"
 #include "chi2.h"
 #include "minimal_scene.h"
 #include "render_stats.h"
@@ -103,18 +104,6 @@ TEST(LightSelection, OnlyProvablyDarkLightsGetNothing) {
 namespace vesper::test {
 namespace {
 
-// Irradiance at p on the plane y = 0 (normal +y) from a Lambertian polygon of
-// radiance L (Lambert 1760; Arvo 1995), as in analytic_test.cpp.
-double polygon_irradiance(const Vec3d& p, const std::array<Vec3d, 4>& verts, double L) {
-  double sum = 0;
-  for (int i = 0; i < 4; ++i) {
-    const Vec3d a = normalize(verts[size_t(i)] - p), b = normalize(verts[size_t((i + 1) % 4)] - p);
-    const double angle = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
-    sum += angle * normalize(cross(a, b)).y;
-  }
-  return 0.5 * L * std::abs(sum);
-}
-
 // A diffuse plane y = 0 under a quad light, six small sphere candles (one
 // below the plane) and a dim sun, rendered with `mode`: each 4x4 tile's mean
 // must match rho/pi * E(x) (Lambert's polygon formula for the quad, I cos /
@@ -147,35 +136,12 @@ void expect_plane_under_many_lights(LightSelection mode) {
   add_light(d, SunLightDesc{sun, Rgb(float(E_sun)), 0.5});
   const Scene scene = build_scene(d);
   auto irradiance = [&](const Vec3d& x) {
-    double e = E_sun * sun.y + polygon_irradiance(x, verts, L);
+    double e = E_sun * sun.y + polygon_irradiance(x, {0, 1, 0}, verts, L);
     for (const Vec3d& c : candles)
       if (c.y > 0) e += I * (c.y - x.y) / std::pow(length(c - x), 3.0);
     return e;
   };
-  auto expected_pixel = [&](int x, int y) {
-    double sum = 0;
-    for (int sy = 0; sy < 8; ++sy)
-      for (int sx = 0; sx < 8; ++sx) {
-        const Ray r =
-            scene.camera.generate_ray(x + (sx + 0.5f) / 8.f, y + (sy + 0.5f) / 8.f, {0.5f, 0.5f});
-        const Vec3d o = Vec3d(r.origin) * scene.unit_scale + scene.origin, dir(r.dir);
-        sum += rho / M_PI * irradiance(o + dir * (-o.y / dir.y));
-      }
-    return sum / 64.0;
-  };
-  const int tile = 4;
-  const TileStats st = tile_stats(scene, 16, 16, tile);
-  const double crit = sidak_t_critical(0.01, int(st.mean.size()), st.batches - 1);
-  for (int ty = 0; ty < st.tiles_y; ++ty)
-    for (int tx = 0; tx < st.tiles_x; ++tx) {
-      double expect = 0;
-      for (int y = ty * tile; y < (ty + 1) * tile; ++y)
-        for (int x = tx * tile; x < (tx + 1) * tile; ++x) expect += expected_pixel(x, y);
-      expect /= tile * tile;
-      const size_t t = size_t(ty * st.tiles_x + tx);
-      EXPECT_LT(std::abs(st.mean[t] - expect) / st.se[t], crit)
-          << "tile " << tx << "," << ty << " rendered " << st.mean[t] << " analytic " << expect;
-    }
+  expect_plane_tiles_match(scene, rho, irradiance, 16, 16);
 }
 
 TEST(LightSelection, SpatialChoiceMatchesTheAnalyticPlane) {
