@@ -27,6 +27,7 @@ struct DirectSample {
   Rgb value;    // contribution, before the path throughput
   Rgb diffuse;  // the diffuse lobe's share of value (surfaces)
   size_t light = 0;
+  LightSampler::Sums selection;  // the light choice's sums at the point (MIS of the next ray)
 };
 
 // One light sample for the point at.p, chosen for `at` (light_sampler.h), at the path's `time`.
@@ -40,7 +41,7 @@ DirectSample sample_direct(const Scene& scene, const ShadingPoint& at, const Vec
   DirectSample out;
   const Vec3& p = at.p;
   float pmf = 0.f, u_rest = 0.f;
-  const size_t li = scene.light_sampler.sample(at, sampler.next1(), &pmf, &u_rest);
+  const size_t li = scene.light_sampler.sample(at, sampler.next1(), &pmf, &u_rest, &out.selection);
   const Vec2 u_light = sampler.next2();
   out.light = li;
   if (pmf <= 0.f) return out;

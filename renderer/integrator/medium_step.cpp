@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -35,10 +36,12 @@ void add_equiangular(PathContext& ctx, const Ray& ray, const std::vector<Majoran
 
 // Next-event estimation from the point at distance t along ray, where the
 // path scattered. When equiangular sampling ran on this ray, delta lights are
-// weighted against it.
-void add_direct_light(PathContext& ctx, const Ray& ray, const std::vector<MajorantSpan>& spans,
-                      float t, const HgPhase& phase, bool equiangular, int depth,
-                      const Rgb& throughput) {
+// weighted against it. Returns the light choice's sums, for the MIS weight
+// of the phase ray that leaves this point.
+LightSampler::Sums add_direct_light(PathContext& ctx, const Ray& ray,
+                                    const std::vector<MajorantSpan>& spans, float t,
+                                    const HgPhase& phase, bool equiangular, int depth,
+                                    const Rgb& throughput) {
   const Scene& scene = ctx.scene;
   const Vec3 p = ray.origin + ray.dir * t;
   const Vec3 wo = -ray.dir;
@@ -59,14 +62,17 @@ void add_direct_light(PathContext& ctx, const Ray& ray, const std::vector<Majora
                              ctx.result.rays, eval_phase);
   }
   if (!ds.value.is_black()) ctx.add(throughput * ds.value, depth + 1, scene.light_group[ds.light]);
+  return ds.selection;
 }
 
 // At a real scattering collision: light from there, then the next ray.
 void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const FreeFlight& flight,
              bool equiangular, int depth, PathState& path) {
   const HgPhase phase{flight.g};
+  std::optional<LightSampler::Sums> selection;
   if (ctx.have_lights()) {
-    add_direct_light(ctx, path.ray, spans, flight.t, phase, equiangular, depth, path.throughput);
+    selection = add_direct_light(ctx, path.ray, spans, flight.t, phase, equiangular, depth,
+                                 path.throughput);
   } else {
     // Keep the sample dimensions aligned whether or not NEE ran.
     ctx.sampler.next1();
@@ -77,6 +83,7 @@ void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const Fre
   const Vec3 wi = phase.sample(wo, ctx.sampler.next2());
   path.prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
   path.prev_vertex = ShadingPoint{p, Vec3(0.f)};
+  path.prev_selection = selection;
   path.count_emission_fully = false;
   path.ray = Ray{p, wi, std::numeric_limits<float>::infinity(), path.ray.time};
 }

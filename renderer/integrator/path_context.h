@@ -1,6 +1,8 @@
 #pragma once
 // What each step of one camera path reads and writes. Shared by the surface
 // steps (path_tracer.cpp) and the medium steps (medium_step.cpp).
+#include <optional>
+
 #include "renderer/integrator/path_tracer.h"
 
 namespace vesper {
@@ -14,6 +16,8 @@ struct PathState {
   // Where that sample was made, as next-event estimation chose its light
   // there: a light the ray hits is MIS-weighted with the pmf of that vertex.
   ShadingPoint prev_vertex{};
+  // The light choice's sums there, when next-event estimation ran at it.
+  std::optional<LightSampler::Sums> prev_selection{};
 };
 
 struct PathContext {

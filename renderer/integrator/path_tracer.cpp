@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <tuple>
 
 #include "renderer/integrator/direct_lighting.h"
@@ -28,8 +29,10 @@ void add_light_reached(PathContext& ctx, size_t li, float distance, int depth,
   if (le.is_black()) return;
   float w = 1.f;
   if (!path.count_emission_fully) {
-    const float light_pdf =
-        scene.light_sampler.pmf(path.prev_vertex, li) * light.pdf(path.ray.dir, distance);
+    const float pmf = path.prev_selection
+                          ? scene.light_sampler.pmf(path.prev_vertex, li, *path.prev_selection)
+                          : scene.light_sampler.pmf(path.prev_vertex, li);
+    const float light_pdf = pmf * light.pdf(path.ray.dir, distance);
     w = power_heuristic(path.prev_scatter_pdf, light_pdf);
   }
   ctx.add(path.throughput * le * w, depth, scene.light_group[li]);
@@ -46,9 +49,9 @@ void record_first_hit(PathContext& ctx, const SurfaceHit& hit, const Ray& ray) {
 
 // Next-event estimation at a surface vertex.
 template <bool kMedia>
-void add_direct_light(PathContext& ctx, const SurfaceHit& hit, const ShadingPoint& at,
-                      const Bsdf& bsdf, const Frame& frame, const Vec3& wo, int depth,
-                      const Rgb& throughput, float time) {
+LightSampler::Sums add_direct_light(PathContext& ctx, const SurfaceHit& hit, const ShadingPoint& at,
+                                    const Bsdf& bsdf, const Frame& frame, const Vec3& wo, int depth,
+                                    const Rgb& throughput, float time) {
   const bool want_diffuse = ctx.options.record != nullptr;
   const DirectSample ds = sample_direct<kMedia>(
       ctx.scene, at, hit.n, time, ctx.sampler, ctx.result.rays, [&](const Vec3& wi_world) {
@@ -58,10 +61,11 @@ void add_direct_light(PathContext& ctx, const SurfaceHit& hit, const ShadingPoin
                           want_diffuse ? bsdf_eval_diffuse(bsdf, wo, wi) * cos : Rgb{},
                           bsdf_pdf(bsdf, wo, wi)};
       });
-  if (ds.value.is_black()) return;
+  if (ds.value.is_black()) return ds.selection;
   const Rgb fraction = safe_ratio(ds.diffuse, ds.value);
   ctx.add(throughput * ds.value, depth + 1, ctx.scene.light_group[ds.light], false,
           depth == 0 ? &fraction : nullptr);
+  return ds.selection;
 }
 
 // Light sampling and a BSDF sample for the next ray at a surface vertex;
@@ -81,8 +85,10 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   // it can be skipped; light through a dielectric may come from anywhere.
   const ShadingPoint at{hit.p, transmissive ? Vec3(0.f) : n_shading};
 
+  std::optional<LightSampler::Sums> selection;
   if (ctx.have_lights() && !bsdf_is_delta(bsdf)) {
-    add_direct_light<kMedia>(ctx, hit, at, bsdf, frame, wo, depth, path.throughput, path.ray.time);
+    selection = add_direct_light<kMedia>(ctx, hit, at, bsdf, frame, wo, depth, path.throughput,
+                                         path.ray.time);
   } else {
     // Keep the sample dimensions aligned whether or not NEE ran.
     ctx.sampler.next1();
@@ -100,6 +106,7 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   path.count_emission_fully = bs->is_specular;
   path.prev_scatter_pdf = bs->pdf;
   path.prev_vertex = at;
+  path.prev_selection = selection;
 
   const Vec3 wi_world = normalize(frame.to_world(bs->wi));
   const Vec3 n_off = dot(wi_world, hit.n) >= 0.f ? hit.n : -hit.n;

@@ -38,6 +38,15 @@ class LightSampler {
  public:
   static constexpr float kFloor = 0.1f;
 
+  // What a spatial choice at a point sums over all lights. Next-event
+  // estimation keeps it so that the MIS weight of a light that the vertex's
+  // BSDF or phase ray then hits costs one importance, not all of them again.
+  struct Sums {
+    float importance = 0.f;  // of the finite lights
+    int reaching = 0;        // finite lights that may reach the point
+    float total = 0.f;       // of all weights
+  };
+
   LightSampler() = default;
   LightSampler(const std::vector<Light>& lights, float scene_radius,
                LightSelection mode = LightSelection::Spatial)
@@ -72,10 +81,13 @@ class LightSampler {
   float pmf(size_t light_index) const { return dist_.discrete_pmf(light_index); }
 
   // The choice at a shading point; `pmf` is exactly pmf(at, index).
-  size_t sample(const ShadingPoint& at, float u, float* pmf, float* u_remapped) const {
+  // `sums_out` (optional) receives the sums for pmf(at, i, sums) later.
+  size_t sample(const ShadingPoint& at, float u, float* pmf, float* u_remapped,
+                Sums* sums_out = nullptr) const {
     if (mode_ == LightSelection::PowerUniform) return sample(u, pmf, u_remapped);
     const std::vector<float>& imp = importances(at);
     const Sums s = sums(imp);
+    if (sums_out) *sums_out = s;
     const float target = u * s.total;
     float cum = 0.f;
     size_t last = 0;
@@ -92,17 +104,15 @@ class LightSampler {
   }
   float pmf(const ShadingPoint& at, size_t light_index) const {
     if (mode_ == LightSelection::PowerUniform) return pmf(light_index);
-    const std::vector<float>& imp = importances(at);
-    const Sums s = sums(imp);
-    return s.total > 0.f ? weight(light_index, imp[light_index], s) / s.total : 0.f;
+    return pmf(at, light_index, sums(importances(at)));
+  }
+  // The same with the sums sample(at, ...) gave at `at`: one importance.
+  float pmf(const ShadingPoint& at, size_t light_index, const Sums& s) const {
+    if (mode_ == LightSelection::PowerUniform) return pmf(light_index);
+    return s.total > 0.f ? weight(light_index, importance(light_index, at), s) / s.total : 0.f;
   }
 
  private:
-  struct Sums {
-    float importance = 0.f;  // of the finite lights
-    int reaching = 0;        // finite lights that may reach the point
-    float total = 0.f;       // of all weights
-  };
   static size_t pick(size_t i, float w, float total, float u_rest, float* pmf, float* u_remapped) {
     *pmf = total > 0.f ? w / total : 0.f;
     *u_remapped = std::min(u_rest, 0x1.fffffep-1f);
@@ -113,11 +123,13 @@ class LightSampler {
   // light and choice, no allocation once warm.
   const std::vector<float>& importances(const ShadingPoint& at) const {
     thread_local std::vector<float> imp;
-    imp.assign(power_.size(), -1.f);
-    for (size_t i = 0; i < power_.size(); ++i)
-      if (bounds_[i] && power_[i] > 0.f)
-        imp[i] = light_importance(*bounds_[i], power_[i], at.p, at.n).value_or(-1.f);
+    imp.resize(power_.size());
+    for (size_t i = 0; i < power_.size(); ++i) imp[i] = importance(i, at);
     return imp;
+  }
+  float importance(size_t i, const ShadingPoint& at) const {
+    if (!bounds_[i] || !(power_[i] > 0.f)) return -1.f;
+    return light_importance(*bounds_[i], power_[i], at.p, at.n).value_or(-1.f);
   }
   Sums sums(const std::vector<float>& imp) const {
     Sums s;

@@ -59,8 +59,11 @@ TEST(LightSelection, DrawnIndicesFollowThePmf) {
   constexpr int kDraws = 200000;
   for (int k = 0; k < kDraws; ++k) {
     float pmf = 0.f, u_rest = 0.f;
-    const size_t i = s.sample(at, uniform(rng), &pmf, &u_rest);
+    LightSampler::Sums sums;
+    const size_t i = s.sample(at, uniform(rng), &pmf, &u_rest, &sums);
     ASSERT_EQ(pmf, s.pmf(at, i));  // bit for bit: MIS recomputes it at the vertex
+    // ... from the sums the choice kept, for every light a BSDF ray may hit.
+    for (size_t j = 0; j < lights.size(); ++j) ASSERT_EQ(s.pmf(at, j, sums), s.pmf(at, j));
     ASSERT_GE(u_rest, 0.f);
     ASSERT_LT(u_rest, 1.f);
     observed[i] += 1;
