@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "renderer/integrator/cone_interval.h"
 #include "renderer/integrator/direct_lighting.h"
 #include "renderer/integrator/equiangular.h"
 #include "renderer/integrator/volume_tracking.h"
@@ -11,33 +12,41 @@ namespace vesper {
 namespace {
 
 // The segment from the first span's start to the last span's end, seen from
-// the light's aim point (point and spot lights, with or without a radius).
+// the light's aim point (point and spot lights, with or without a radius),
+// clipped to a spot light's cone (cone_interval.h).
 std::optional<EquiangularSegment> segment_toward(const Light& light, const Ray& ray,
-                                                 const std::vector<MajorantSpan>& spans) {
+                                                 const std::vector<MajorantSpan>& spans,
+                                                 bool clip_to_cone) {
   const std::optional<LightBounds> b = light.bounds();
   const std::optional<Vec3> aim = b ? b->aim() : std::nullopt;
   if (!aim) return std::nullopt;
-  return EquiangularSegment::make(ray.origin, ray.dir, *aim, spans.front().t0, spans.back().t1);
+  TInterval lit{spans.front().t0, spans.back().t1};
+  if (clip_to_cone && !b->cosine) {
+    const auto in_cone = cone_interval(ray.origin, ray.dir, *aim, b->axis, b->cos_cone, lit.t0, lit.t1);
+    if (!in_cone) return std::nullopt;
+    lit = *in_cone;
+  }
+  return EquiangularSegment::make(ray.origin, ray.dir, *aim, lit.t0, lit.t1);
 }
 
 }  // namespace
 
 float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<MajorantSpan>& spans,
-                      float t) {
-  const auto seg = segment_toward(light, ray, spans);
+                      float t, bool clip_to_cone) {
+  const auto seg = segment_toward(light, ray, spans, clip_to_cone);
   return seg ? seg->pdf(t) : 0.f;
 }
 
 EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
                                      const std::vector<MajorantSpan>& spans, const Rgb& throughput,
-                                     Sampler& sampler, uint32_t& rays) {
+                                     Sampler& sampler, uint32_t& rays, bool clip_to_cone) {
   EquiangularSample out;
   float pmf = 0.f, u_rest = 0.f;
   const size_t li = scene.light_sampler.sample(sampler.next1(), &pmf, &u_rest);
   const Vec2 u_eq = sampler.next2();
   out.light = li;
   const Light& light = scene.lights[li];
-  const auto seg = segment_toward(light, ray, spans);
+  const auto seg = segment_toward(light, ray, spans, clip_to_cone);
   if (!seg || !(pmf > 0.f)) return out;
   const float t = seg->sample(u_eq.x);
   const float pdf_e = seg->pdf(t);

@@ -14,9 +14,10 @@
 namespace vesper {
 
 // Density (per unit t) with which sample_equiangular picks t toward `light`
-// over the spans' extent; 0 for lights that are not a single point.
+// over the spans' extent (with clip_to_cone: the part of it inside a spot
+// light's cone); 0 for lights that are not a single point.
 float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<MajorantSpan>& spans,
-                      float t);
+                      float t, bool clip_to_cone);
 
 struct EquiangularSample {
   Rgb value;  // path throughput included; black when nothing was added
@@ -29,6 +30,6 @@ struct EquiangularSample {
 // (and more for the shadow ray's transmittance).
 EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
                                      const std::vector<MajorantSpan>& spans, const Rgb& throughput,
-                                     Sampler& sampler, uint32_t& rays);
+                                     Sampler& sampler, uint32_t& rays, bool clip_to_cone);
 
 }  // namespace vesper

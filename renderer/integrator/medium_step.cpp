@@ -8,6 +8,7 @@
 
 #include "renderer/integrator/direct_lighting.h"
 #include "renderer/integrator/equiangular_sampling.h"
+#include "renderer/integrator/guided_scatter.h"
 #include "renderer/integrator/volume_tracking.h"
 #include "renderer/media/henyey_greenstein.h"
 
@@ -24,7 +25,8 @@ bool all_analytic(const std::vector<MajorantSpan>& spans) {
 void add_equiangular(PathContext& ctx, const Ray& ray, const std::vector<MajorantSpan>& spans,
                      int depth, const Rgb& throughput) {
   const EquiangularSample es =
-      sample_equiangular(ctx.scene, ray, spans, throughput, ctx.sampler, ctx.result.rays);
+      sample_equiangular(ctx.scene, ray, spans, throughput, ctx.sampler,
+                         ctx.result.rays, ctx.options.equiangular_in_cone);
   if (es.value.is_black()) return;
   const int group = ctx.scene.light_group[es.light];
   if (depth == 0 && ctx.options.record) {
@@ -53,7 +55,8 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const Ray& ray,
   if (equiangular) {
     const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
     auto delta_weight = [&](size_t li) {
-      return power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t));
+      return power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t,
+                                                     ctx.options.equiangular_in_cone));
     };
     ds = sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
                              ctx.result.rays, eval_phase, delta_weight);
@@ -65,8 +68,9 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const Ray& ray,
   return ds.selection;
 }
 
-// At a real scattering collision: light from there, then the next ray.
-void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const FreeFlight& flight,
+// At a real scattering collision: light from there, then the next ray;
+// false when no next ray could be made.
+bool scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const FreeFlight& flight,
              bool equiangular, int depth, PathState& path) {
   const HgPhase phase{flight.g};
   std::optional<LightSampler::Sums> selection;
@@ -80,12 +84,23 @@ void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const Fre
   }
   const Vec3 p = path.ray.origin + path.ray.dir * flight.t;
   const Vec3 wo = -path.ray.dir;
-  const Vec3 wi = phase.sample(wo, ctx.sampler.next2());
-  path.prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
+  Vec3 wi;
+  if (ctx.options.light_guide) {
+    const std::optional<GuidedDirection> gd =
+        sample_guided_phase(phase, LightGuide(ctx.scene.light_sampler, p), wo, ctx.sampler);
+    if (!gd) return false;
+    wi = gd->wi;
+    path.throughput *= gd->weight;
+    path.prev_scatter_pdf = gd->pdf;
+  } else {
+    wi = phase.sample(wo, ctx.sampler.next2());
+    path.prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
+  }
   path.prev_vertex = ShadingPoint{p, Vec3(0.f)};
   path.prev_selection = selection;
   path.count_emission_fully = false;
   path.ray = Ray{p, wi, std::numeric_limits<float>::infinity(), path.ray.time};
+  return true;
 }
 
 // Delta tracking to the next real collision, with the volume emission along
@@ -126,7 +141,7 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
   if (flight.event == FlightEvent::Escaped) return MediumEvent::None;
   if (depth >= options.max_depth) return MediumEvent::PathEnded;
   if (depth == 0 && options.record) options.record->set_first_volume();
-  scatter(ctx, spans, flight, equiangular, depth, path);
+  if (!scatter(ctx, spans, flight, equiangular, depth, path)) return MediumEvent::PathEnded;
   return MediumEvent::Scattered;
 }
 

@@ -27,6 +27,11 @@ struct PathTracerOptions {
   int rr_start_depth = 3;  // Russian roulette from this many scattering events on
   // Equiangular sampling toward point/spot lights in homogeneous media (MIS).
   bool equiangular = true;
+  // ... aimed only at the part of a ray inside a spot light's cone.
+  bool equiangular_in_cone = true;
+  // The ray leaving a medium vertex: phase sampling mixed with directions
+  // toward small lights (light_guide.h), for their multiple scattering.
+  bool light_guide = true;
   // Layers and transport AOVs: when set, every contribution is also binned
   // here (reset by trace_path). Null for plain renders.
   PathRecord* record = nullptr;

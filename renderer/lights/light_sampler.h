@@ -79,6 +79,9 @@ class LightSampler {
     return dist_.sample_discrete(u, pmf, u_remapped);
   }
   float pmf(size_t light_index) const { return dist_.discrete_pmf(light_index); }
+  // What the lights are, for strategies that aim at them (light_guide.h).
+  const std::vector<float>& powers() const { return power_; }
+  const std::vector<std::optional<LightBounds>>& bounds() const { return bounds_; }
 
   // The choice at a shading point; `pmf` is exactly pmf(at, index).
   // `sums_out` (optional) receives the sums for pmf(at, i, sums) later.
