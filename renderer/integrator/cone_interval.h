@@ -7,10 +7,10 @@
 // Any deterministic interval keeps the estimator unbiased: the MIS partner
 // (distance sampling + next-event estimation) evaluates the same clipped
 // density and takes full weight wherever it is zero.
-#include <utility>
 #include <array>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "renderer/math/vec.h"
 

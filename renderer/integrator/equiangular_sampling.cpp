@@ -22,7 +22,8 @@ std::optional<EquiangularSegment> segment_toward(const Light& light, const Ray& 
   if (!aim) return std::nullopt;
   TInterval lit{spans.front().t0, spans.back().t1};
   if (clip_to_cone && !b->cosine) {
-    const auto in_cone = cone_interval(ray.origin, ray.dir, *aim, b->axis, b->cos_cone, lit.t0, lit.t1);
+    const auto in_cone =
+        cone_interval(ray.origin, ray.dir, *aim, b->axis, b->cos_cone, lit.t0, lit.t1);
     if (!in_cone) return std::nullopt;
     lit = *in_cone;
   }
@@ -49,6 +50,7 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const auto seg = segment_toward(light, ray, spans, clip_to_cone);
   if (!seg || !(pmf > 0.f)) return out;
   const float t = seg->sample(u_eq.x);
+  out.t = t;
   const float pdf_e = seg->pdf(t);
   const Vec3 x = ray.origin + ray.dir * t;
   const MediumCoefficients c = scene.media.coefficients(x, ray.time);

@@ -22,6 +22,7 @@ float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<Majo
 struct EquiangularSample {
   Rgb value;  // path throughput included; black when nothing was added
   size_t light = 0;
+  float t = 0;  // the distance sampled
 };
 
 // One single-scattering estimate along `ray`: a light picked by the scene's

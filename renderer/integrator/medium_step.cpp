@@ -8,7 +8,7 @@
 
 #include "renderer/integrator/direct_lighting.h"
 #include "renderer/integrator/equiangular_sampling.h"
-#include "renderer/integrator/guided_scatter.h"
+#include "renderer/integrator/light_vertex_connection.h"
 #include "renderer/integrator/volume_tracking.h"
 #include "renderer/media/henyey_greenstein.h"
 
@@ -22,12 +22,14 @@ bool all_analytic(const std::vector<MajorantSpan>& spans) {
 
 // Adds the equiangular estimate along ray. At depth 0 its scattering would be
 // the path's first event: a volume one, whatever the path does next.
-void add_equiangular(PathContext& ctx, const Ray& ray, const std::vector<MajorantSpan>& spans,
-                     int depth, const Rgb& throughput) {
-  const EquiangularSample es =
-      sample_equiangular(ctx.scene, ray, spans, throughput, ctx.sampler,
-                         ctx.result.rays, ctx.options.equiangular_in_cone);
+void add_equiangular(PathContext& ctx, const std::vector<MajorantSpan>& spans, int depth,
+                     const PathState& path) {
+  const Ray& ray = path.ray;
+  EquiangularSample es = sample_equiangular(ctx.scene, ray, spans, path.throughput, ctx.sampler,
+                                            ctx.result.rays, ctx.options.equiangular_in_cone);
   if (es.value.is_black()) return;
+  es.value *= 1.f - ctx.light_vertex_share(path, ray.origin + ray.dir * es.t, Vec3(0.f), Vec3(0.f),
+                                           es.light);
   const int group = ctx.scene.light_group[es.light];
   if (depth == 0 && ctx.options.record) {
     ctx.add_as(FirstEvent::Volume, false, group, es.value);
@@ -36,47 +38,59 @@ void add_equiangular(PathContext& ctx, const Ray& ray, const std::vector<Majoran
   }
 }
 
-// Next-event estimation from the point at distance t along ray, where the
-// path scattered. When equiangular sampling ran on this ray, delta lights are
-// weighted against it. Returns the light choice's sums, for the MIS weight
-// of the phase ray that leaves this point.
-LightSampler::Sums add_direct_light(PathContext& ctx, const Ray& ray,
-                                    const std::vector<MajorantSpan>& spans, float t,
-                                    const HgPhase& phase, bool equiangular, int depth,
-                                    const Rgb& throughput) {
+// Next-event estimation from the point at distance t along path.ray, where
+// the path scattered. Delta lights are weighted against equiangular sampling
+// when it ran on this ray, and against light-vertex connections from the
+// vertex that made the ray. Returns the light choice's sums, for the MIS
+// weight of the phase ray that leaves this point.
+LightSampler::Sums add_direct_light(PathContext& ctx, const std::vector<MajorantSpan>& spans,
+                                    float t, const HgPhase& phase, bool equiangular, int depth,
+                                    const PathState& path) {
   const Scene& scene = ctx.scene;
+  const Ray& ray = path.ray;
   const Vec3 p = ray.origin + ray.dir * t;
   const Vec3 wo = -ray.dir;
   auto eval_phase = [&](const Vec3& wi) {
     const float f = phase.eval(wo, wi);
     return std::tuple{Rgb(f), Rgb{}, f};
   };
-  DirectSample ds;
-  if (equiangular) {
-    const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
-    auto delta_weight = [&](size_t li) {
-      return power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t,
-                                                     ctx.options.equiangular_in_cone));
-    };
-    ds = sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
-                             ctx.result.rays, eval_phase, delta_weight);
-  } else {
-    ds = sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
-                             ctx.result.rays, eval_phase);
-  }
-  if (!ds.value.is_black()) ctx.add(throughput * ds.value, depth + 1, scene.light_group[ds.light]);
+  const float pdf_a = equiangular ? analytic_scatter_pdf(scene.media, spans, ray, t) : 0.f;
+  auto delta_weight = [&](size_t li) {
+    const float w = equiangular
+                        ? power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t,
+                                                                 ctx.options.equiangular_in_cone))
+                        : 1.f;
+    return w * (1.f - ctx.light_vertex_share(path, p, Vec3(0.f), Vec3(0.f), li));
+  };
+  const DirectSample ds =
+      sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
+                          ctx.result.rays, eval_phase, delta_weight);
+  if (!ds.value.is_black())
+    ctx.add(path.throughput * ds.value, depth + 1, scene.light_group[ds.light]);
   return ds.selection;
 }
 
-// At a real scattering collision: light from there, then the next ray;
-// false when no next ray could be made.
-bool scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const FreeFlight& flight,
+// The connection from a medium vertex to the sample's light vertex.
+void connect_from_medium(PathContext& ctx, const Vec3& p, const HgPhase& phase, const Vec3& wo,
+                         int depth, const PathState& path) {
+  const LightVertex* lv = ctx.get_light_vertex(path.ray.time);
+  if (!lv) return;
+  const Rgb value = connect_light_vertex(ctx.scene, *lv, p, Vec3(0.f), path.ray.time, ctx.sampler,
+                                         ctx.result.rays, [&](const Vec3& wi) {
+                                           const float f = phase.eval(wo, wi);
+                                           return std::tuple{Rgb(f), f};
+                                         });
+  if (!value.is_black())
+    ctx.add(path.throughput * value, depth + 2, ctx.scene.light_group[lv->light]);
+}
+
+// At a real scattering collision: light from there, then the next ray.
+void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const FreeFlight& flight,
              bool equiangular, int depth, PathState& path) {
   const HgPhase phase{flight.g};
   std::optional<LightSampler::Sums> selection;
   if (ctx.have_lights()) {
-    selection = add_direct_light(ctx, path.ray, spans, flight.t, phase, equiangular, depth,
-                                 path.throughput);
+    selection = add_direct_light(ctx, spans, flight.t, phase, equiangular, depth, path);
   } else {
     // Keep the sample dimensions aligned whether or not NEE ran.
     ctx.sampler.next1();
@@ -84,23 +98,14 @@ bool scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const Fre
   }
   const Vec3 p = path.ray.origin + path.ray.dir * flight.t;
   const Vec3 wo = -path.ray.dir;
-  Vec3 wi;
-  if (ctx.options.light_guide) {
-    const std::optional<GuidedDirection> gd =
-        sample_guided_phase(phase, LightGuide(ctx.scene.light_sampler, p), wo, ctx.sampler);
-    if (!gd) return false;
-    wi = gd->wi;
-    path.throughput *= gd->weight;
-    path.prev_scatter_pdf = gd->pdf;
-  } else {
-    wi = phase.sample(wo, ctx.sampler.next2());
-    path.prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
-  }
+  if (ctx.light_vertices && depth + 1 < ctx.options.max_depth)
+    connect_from_medium(ctx, p, phase, wo, depth, path);
+  const Vec3 wi = phase.sample(wo, ctx.sampler.next2());
+  path.prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
   path.prev_vertex = ShadingPoint{p, Vec3(0.f)};
   path.prev_selection = selection;
   path.count_emission_fully = false;
   path.ray = Ray{p, wi, std::numeric_limits<float>::infinity(), path.ray.time};
-  return true;
 }
 
 // Delta tracking to the next real collision, with the volume emission along
@@ -134,14 +139,14 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
         estimate_transmittance(scene.media, path.ray, tmax, ctx.sampler).average();
   const bool equiangular =
       options.equiangular && all_analytic(spans) && ctx.have_lights() && depth < options.max_depth;
-  if (equiangular) add_equiangular(ctx, path.ray, spans, depth, path.throughput);
+  if (equiangular) add_equiangular(ctx, spans, depth, path);
 
   const FreeFlight flight = sample_free_flight_with_emission(ctx, spans, tmax, depth, path);
   if (flight.event == FlightEvent::Absorbed) return MediumEvent::PathEnded;
   if (flight.event == FlightEvent::Escaped) return MediumEvent::None;
   if (depth >= options.max_depth) return MediumEvent::PathEnded;
   if (depth == 0 && options.record) options.record->set_first_volume();
-  if (!scatter(ctx, spans, flight, equiangular, depth, path)) return MediumEvent::PathEnded;
+  scatter(ctx, spans, flight, equiangular, depth, path);
   return MediumEvent::Scattered;
 }
 

@@ -3,6 +3,7 @@
 // steps (path_tracer.cpp) and the medium steps (medium_step.cpp).
 #include <optional>
 
+#include "renderer/integrator/light_vertex.h"
 #include "renderer/integrator/path_tracer.h"
 
 namespace vesper {
@@ -29,7 +30,30 @@ struct PathContext {
   // With options.indirect_clamp: the sample's direct and indirect sums.
   Rgb direct, indirect;
 
+  // Light-vertex connections (light_vertex.h): on for this path, and the
+  // sample's light vertex once traced (at the first vertex that connects).
+  bool light_vertices = false;
+  bool light_vertex_traced = false;
+  std::optional<LightVertex> light_vertex{};
+
   bool have_lights() const { return !scene.light_sampler.empty(); }
+
+  const LightVertex* get_light_vertex(float time) {
+    if (!light_vertex_traced) {
+      light_vertex = trace_light_vertex(scene, time, sampler, result.rays);
+      light_vertex_traced = true;
+    }
+    return light_vertex ? &*light_vertex : nullptr;
+  }
+  // The connections' MIS share of the path x -> y -> light, x being the
+  // vertex that made path.ray (0 where no connection was made from it): the
+  // path tracer's own estimates of that path are scaled by 1 - this.
+  float light_vertex_share(const PathState& path, const Vec3& y, const Vec3& n_y,
+                           const Vec3& n_y_shading, size_t light) const {
+    if (!light_vertices || path.count_emission_fully) return 0.f;
+    return light_vertex_weight(scene, path.prev_vertex.p, path.prev_scatter_pdf, y, n_y,
+                               n_y_shading, light, path.ray.time);
+  }
 
   // Adds a contribution to the pixel and, for layers/AOVs, to the path record.
   void add(const Rgb& value, int events, int group, bool volume_view = false,

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "renderer/integrator/direct_lighting.h"
+#include "renderer/integrator/light_vertex_connection.h"
 #include "renderer/integrator/medium_step.h"
 #include "renderer/integrator/path_context.h"
 #include "renderer/math/frame.h"
@@ -48,24 +49,45 @@ void record_first_hit(PathContext& ctx, const SurfaceHit& hit, const Ray& ray) {
 }
 
 // Next-event estimation at a surface vertex.
+// Delta lights share the path x -> hit -> light with light-vertex
+// connections made from x (light_vertex.h).
 template <bool kMedia>
 LightSampler::Sums add_direct_light(PathContext& ctx, const SurfaceHit& hit, const ShadingPoint& at,
                                     const Bsdf& bsdf, const Frame& frame, const Vec3& wo, int depth,
-                                    const Rgb& throughput, float time) {
+                                    const PathState& path) {
   const bool want_diffuse = ctx.options.record != nullptr;
+  auto delta_weight = [&](size_t li) {
+    return 1.f - ctx.light_vertex_share(path, hit.p, hit.n, at.n, li);
+  };
   const DirectSample ds = sample_direct<kMedia>(
-      ctx.scene, at, hit.n, time, ctx.sampler, ctx.result.rays, [&](const Vec3& wi_world) {
+      ctx.scene, at, hit.n, path.ray.time, ctx.sampler, ctx.result.rays,
+      [&](const Vec3& wi_world) {
         const Vec3 wi = frame.to_local(wi_world);
         const float cos = std::abs(wi.z);
         return std::tuple{bsdf_eval(bsdf, wo, wi) * cos,
                           want_diffuse ? bsdf_eval_diffuse(bsdf, wo, wi) * cos : Rgb{},
                           bsdf_pdf(bsdf, wo, wi)};
-      });
+      },
+      delta_weight);
   if (ds.value.is_black()) return ds.selection;
   const Rgb fraction = safe_ratio(ds.diffuse, ds.value);
-  ctx.add(throughput * ds.value, depth + 1, ctx.scene.light_group[ds.light], false,
+  ctx.add(path.throughput * ds.value, depth + 1, ctx.scene.light_group[ds.light], false,
           depth == 0 ? &fraction : nullptr);
   return ds.selection;
+}
+
+// The connection from a surface vertex to the sample's light vertex.
+void connect_from_surface(PathContext& ctx, const SurfaceHit& hit, const Bsdf& bsdf,
+                          const Frame& frame, const Vec3& wo, int depth, const Rgb& throughput,
+                          float time) {
+  const LightVertex* lv = ctx.get_light_vertex(time);
+  if (!lv) return;
+  const Rgb value = connect_light_vertex(
+      ctx.scene, *lv, hit.p, hit.n, time, ctx.sampler, ctx.result.rays, [&](const Vec3& wi_world) {
+        const Vec3 wi = frame.to_local(wi_world);
+        return std::tuple{bsdf_eval(bsdf, wo, wi) * std::abs(wi.z), bsdf_pdf(bsdf, wo, wi)};
+      });
+  if (!value.is_black()) ctx.add(throughput * value, depth + 2, ctx.scene.light_group[lv->light]);
 }
 
 // Light sampling and a BSDF sample for the next ray at a surface vertex;
@@ -87,13 +109,18 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
 
   std::optional<LightSampler::Sums> selection;
   if (ctx.have_lights() && !bsdf_is_delta(bsdf)) {
-    selection = add_direct_light<kMedia>(ctx, hit, at, bsdf, frame, wo, depth, path.throughput,
-                                         path.ray.time);
+    selection = add_direct_light<kMedia>(ctx, hit, at, bsdf, frame, wo, depth, path);
   } else {
     // Keep the sample dimensions aligned whether or not NEE ran.
     ctx.sampler.next1();
     ctx.sampler.next2();
   }
+
+  // Whatever the BSDF sample below does: the path tracer's share of the
+  // connection's paths assumes it was made.
+  if constexpr (kMedia)
+    if (ctx.light_vertices && !bsdf_is_delta(bsdf) && depth + 1 < ctx.options.max_depth)
+      connect_from_surface(ctx, hit, bsdf, frame, wo, depth, path.throughput, path.ray.time);
 
   const float uc = ctx.sampler.next1();
   const Vec2 u = ctx.sampler.next2();
@@ -131,6 +158,8 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
   PathResult result;
   if (options.record) options.record->reset();
   PathContext ctx{scene, sampler, options, result, Rgb{}, Rgb{}};
+  if constexpr (kMedia)
+    ctx.light_vertices = options.light_vertices && has_connectable_lights(scene);
   PathState path{camera_ray};
   for (int depth = 0;; ++depth) {
     const std::optional<SurfaceHit> hit = scene.accel->intersect(path.ray);

@@ -29,9 +29,9 @@ struct PathTracerOptions {
   bool equiangular = true;
   // ... aimed only at the part of a ray inside a spot light's cone.
   bool equiangular_in_cone = true;
-  // The ray leaving a medium vertex: phase sampling mixed with directions
-  // toward small lights (light_guide.h), for their multiple scattering.
-  bool light_guide = true;
+  // Connect scattering vertices to a light vertex traced from point and spot
+  // lights (light_vertex.h), in scenes with media.
+  bool light_vertices = true;
   // Layers and transport AOVs: when set, every contribution is also binned
   // here (reset by trace_path). Null for plain renders.
   PathRecord* record = nullptr;

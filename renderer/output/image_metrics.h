@@ -38,7 +38,8 @@ inline double firefly_fraction(const LayeredImage& image, double ratio = 10.0, i
                                double floor = 1e-3) {
   const int cr = image.channel_index("R"), cg = image.channel_index("G"),
             cb = image.channel_index("B");
-  if (cr < 0 || cg < 0 || cb < 0) throw std::invalid_argument("firefly_fraction: missing R, G or B");
+  if (cr < 0 || cg < 0 || cb < 0)
+    throw std::invalid_argument("firefly_fraction: missing R, G or B");
   const int w = image.width, h = image.height;
   if (w <= 0 || h <= 0) return 0.0;
   std::vector<float> lum(size_t(w) * size_t(h));

@@ -34,7 +34,7 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   pt.want_aovs = layout.albedo >= 0 || layout.normal >= 0 || layout.depth >= 0;
   pt.equiangular = options.equiangular;
   pt.equiangular_in_cone = options.equiangular_in_cone;
-  pt.light_guide = options.light_guide;
+  pt.light_vertices = options.light_vertices;
   pt.want_camera_transmittance = layout.need_transmittance;
   const std::optional<double> clamp = options.clamp ? options.clamp : scene.render.clamp;
   pt.indirect_clamp = float(clamp.value_or(0.0));

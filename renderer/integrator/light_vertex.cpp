@@ -1,0 +1,134 @@
+#include "renderer/integrator/light_vertex.h"
+
+#include <cmath>
+#include <vector>
+
+#include "renderer/integrator/volume_tracking.h"
+#include "renderer/math/constants.h"
+#include "renderer/math/frame.h"
+
+namespace vesper {
+namespace {
+
+bool connectable(const LightSampler& ls, size_t i) {
+  const std::optional<LightBounds>& b = ls.bounds()[i];
+  return b && b->is_point() && ls.powers()[i] > 0.f;
+}
+
+// The connectable lights' total power: light vertices pick by power.
+float connectable_power(const LightSampler& ls) {
+  float total = 0.f;
+  for (size_t i = 0; i < ls.powers().size(); ++i)
+    if (connectable(ls, i)) total += ls.powers()[i];
+  return total;
+}
+
+// Emission directions are uniform in the light's cone (a point light's is
+// the sphere: cos_cone = -1).
+float emission_pdf(const LightBounds& b) { return 1.f / (2.f * kPi * (1.f - b.cos_cone)); }
+
+std::vector<MajorantSpan>& scratch_spans() {
+  thread_local std::vector<MajorantSpan> spans;
+  return spans;
+}
+
+// Densities of distance sampling along from -> to, deterministic (not
+// estimated): what the MIS weights need. In a medium, the density of
+// scattering at `to`; on a surface, the probability of no collision before it.
+float distance_density(const MediaSet& media, const Vec3& from, const Vec3& to, float time,
+                       bool to_surface) {
+  const Vec3 d = to - from;
+  const float dist = length(d);
+  if (!(dist > 0.f)) return 0.f;
+  const Ray ray{from, d / dist, dist, time};
+  auto& spans = scratch_spans();
+  media.majorant_spans(ray, dist, spans);
+  if (to_surface) return analytic_transmittance(media, spans, ray, dist).average();
+  return analytic_scatter_pdf(media, spans, ray, dist);
+}
+
+}  // namespace
+
+bool has_connectable_lights(const Scene& scene) {
+  return connectable_power(scene.light_sampler) > 0.f;
+}
+
+std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sampler& sampler,
+                                              uint32_t& rays) {
+  const LightSampler& ls = scene.light_sampler;
+  const float total = connectable_power(ls);
+  const float u_light = sampler.next1();
+  const Vec2 u_dir = sampler.next2();
+  if (!(total > 0.f)) return std::nullopt;
+  size_t li = ls.powers().size();
+  float cum = 0.f;
+  for (size_t i = 0; i < ls.powers().size(); ++i) {
+    if (!connectable(ls, i)) continue;
+    li = i;
+    cum += ls.powers()[i];
+    if (u_light * total < cum) break;
+  }
+  const LightBounds& b = *ls.bounds()[li];
+  const float pmf = ls.powers()[li] / total;
+  const float cos_t = 1.f - u_dir.x * (1.f - b.cos_cone);
+  const float sin_t = std::sqrt(std::max(0.f, 1.f - cos_t * cos_t));
+  const float phi = 2.f * kPi * u_dir.y;
+  const Vec3 axis = length_squared(b.axis) > 0.f ? b.axis : Vec3(0.f, 0.f, 1.f);
+  const Vec3 dir = normalize(
+      Frame::from_normal(axis).to_world({sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t}));
+  // The light's intensity toward dir: its radiance seen from unit distance.
+  const std::optional<LightSample> at_unit = scene.lights[li].sample(b.lo + dir, Vec2{});
+  if (!at_unit || at_unit->radiance.is_black()) return std::nullopt;
+  const Rgb intensity = at_unit->radiance * (at_unit->distance * at_unit->distance);
+
+  const Ray ray{b.lo, dir, std::numeric_limits<float>::infinity(), time};
+  const std::optional<SurfaceHit> hit = scene.accel->intersect(ray);
+  ++rays;
+  const float tmax = hit ? hit->t : std::numeric_limits<float>::infinity();
+  auto& spans = scratch_spans();
+  scene.media.majorant_spans(ray, tmax, spans);
+  Rgb weight(1.f);
+  const FreeFlight flight = sample_free_flight(scene.media, spans, ray, sampler, weight);
+  LightVertex v;
+  v.light = li;
+  v.alpha = intensity * weight * (1.f / (pmf * emission_pdf(b)));
+  if (flight.event == FlightEvent::Absorbed) return std::nullopt;
+  if (flight.event == FlightEvent::Scattered) {
+    v.p = ray.origin + ray.dir * flight.t;
+    v.g = flight.g;
+    return v;
+  }
+  if (!hit || hit->light >= 0 || bsdf_is_delta(scene.materials[hit->material])) return std::nullopt;
+  v.p = hit->p;
+  v.n = hit->n;
+  v.material = hit->material;
+  return v;
+}
+
+float light_vertex_weight(const Scene& scene, const Vec3& x, float pdf_x, const Vec3& y,
+                          const Vec3& n_y, const Vec3& n_y_shading, size_t light, float time) {
+  const LightSampler& ls = scene.light_sampler;
+  if (!connectable(ls, light) || !(pdf_x > 0.f)) return 0.f;
+  const LightBounds& b = *ls.bounds()[light];
+  const Vec3 from_light = y - b.lo, from_x = y - x;
+  const float r2 = length_squared(from_light), d2 = length_squared(from_x);
+  if (!(r2 > 0.f) || !(d2 > 0.f)) return 0.f;
+  const Vec3 w_light = from_light / std::sqrt(r2), w_x = from_x / std::sqrt(d2);
+  if (!(dot(w_light, b.axis) > b.cos_cone) && b.cos_cone > -1.f) return 0.f;
+  const bool surface = n_y.x != 0.f || n_y.y != 0.f || n_y.z != 0.f;
+  const float pmf_light = ls.powers()[light] / connectable_power(ls);
+  float p_light =
+      pmf_light * emission_pdf(b) * distance_density(scene.media, b.lo, y, time, surface) / r2;
+  float p_path = pdf_x * distance_density(scene.media, x, y, time, surface) / d2 *
+                 ls.pmf(ShadingPoint{y, n_y_shading}, light);
+  if (surface) {
+    p_light *= std::abs(dot(n_y, w_light));
+    p_path *= std::abs(dot(n_y, w_x));
+  }
+  if (!(p_light > 0.f)) return 0.f;
+  if (!(p_path > 0.f)) return 1.f;
+  const float ratio = p_path / p_light;
+  return 1.f / (1.f + ratio * ratio);  // the power heuristic, overflow-safe
+}
+
+}  // namespace vesper

@@ -1,0 +1,56 @@
+#pragma once
+// Light-vertex connections: the strategy for multiple scattering from point
+// and spot lights (issue 11). Each camera sample traces one vertex from a
+// light (its first scattering in a medium, or its first diffuse surface), and
+// every scattering vertex of the camera path connects to it: the two-segment
+// strategy of bidirectional path tracing (Veach 1997; Lafortune & Willems
+// 1996 for media), restricted to light subpaths of one vertex.
+//
+// It finds what the path tracer finds only by chance: fog lit by the bright
+// pool a spot light makes on the floor, and fog beside a shaft lit by the
+// fog inside it. The path x -> y -> light is also made by the path tracer
+// (a ray from x that scatters at y, then next-event estimation; or the
+// equiangular estimate on that ray), so the strategies share it by MIS:
+// u = P_light^2 / (P_light^2 + P_path^2) goes to the connection and (1 - u)
+// scales the path tracer's estimates (whose own equiangular/distance MIS
+// weights sum to 1). P_path is the density of y for the path tracer's
+// distance sampling and light choice, P_light that of the light vertex; both
+// are deterministic functions of (x, y, light), evaluated by the same code
+// on both sides, so the weights are a partition of unity and the sum is
+// unbiased. Only delta point and spot lights (radius 0) take part.
+#include <optional>
+
+#include "renderer/core/ray.h"
+#include "renderer/math/rgb.h"
+#include "renderer/sampling/sampler.h"
+#include "renderer/scene/scene.h"
+
+namespace vesper {
+
+struct LightVertex {
+  Vec3 p;
+  Vec3 n{};  // geometric normal of a surface vertex; zero in a medium
+  size_t light = 0;
+  Rgb alpha;              // I(w) * flight weight / (pmf * emission pdf): the flux it carries
+  uint32_t material = 0;  // surface vertices
+  float g = 0;            // phase asymmetry of medium vertices
+  bool on_surface() const { return n.x != 0.f || n.y != 0.f || n.z != 0.f; }
+};
+
+// Whether the scene has lights that take part (delta point and spot lights).
+bool has_connectable_lights(const Scene& scene);
+
+// Traces one light vertex at shutter time `time`; nullopt when the light ray
+// left the scene, was absorbed, or hit an emitter or a specular surface.
+std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sampler& sampler,
+                                              uint32_t& rays);
+
+// The weight u above for the path x -> y -> light, where x made the ray
+// toward y with direction pdf `pdf_x` (solid angle) and y (normal n_y; zero
+// in a medium) sees x from -dir. `n_y_shading` is the normal the path
+// tracer's light choice at y uses (ShadingPoint::n). 0 when the light does
+// not take part.
+float light_vertex_weight(const Scene& scene, const Vec3& x, float pdf_x, const Vec3& y,
+                          const Vec3& n_y, const Vec3& n_y_shading, size_t light, float time);
+
+}  // namespace vesper

@@ -1,0 +1,61 @@
+// Light-vertex connections (light_vertex.h): unbiased against the path
+// tracer alone, and less noisy where multiple scattering from small lights
+// dominates.
+#include <gtest/gtest.h>
+
+#include "estimator_agreement.h"
+#include "scene_fixtures.h"
+
+namespace vesper::test {
+namespace {
+
+// A spot light's shaft onto a floor in fog, an occluder, and a point light
+// beside it: light reaches most of the image only after two or more
+// scattering events (fog beside the shaft, fog lit by the floor's pool).
+SceneDescription shaft_and_pool_scene(int max_depth) {
+  SceneDescription d = empty_scene(24, 24, 64, max_depth);
+  d.camera.from = {0, 1, 4};
+  d.camera.to = {0, 0.8, 0};
+  d.camera.fov_degrees = 50;
+  const uint32_t grey = add_material(d, "grey", DiffuseMaterialDesc{Rgb(0.6f)});
+  const uint32_t shiny = add_material(d, "shiny", ConductorMaterialDesc{0.3, Rgb(0.2f), Rgb(3.f)});
+  add_quad(d, {-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, grey);
+  add_quad(d, {-3, 0, -2}, {6, 0, 0}, {0, 3, 0}, shiny);
+  add_quad(d, {-0.3, 1.6, -0.3}, {0.6, 0, 0}, {0, 0, 0.6}, grey);  // occluder in the shaft
+  add_light(d, SpotLightDesc{{0.1, 2.6, 0.0}, normalize(Vec3d(0, -1, 0.1)), Rgb(30.f), 25.0, 20.0});
+  add_light(d, PointLightDesc{{-1.2, 0.6, 0.8}, Rgb(0.3f, 0.2f, 0.1f)});
+  HomogeneousMediumDesc fog;
+  fog.sigma_s = Rgb(0.35f, 0.3f, 0.25f);
+  fog.sigma_a = Rgb(0.05f);
+  fog.g = 0.4;
+  fog.bounds = BoxDesc{{-3, 0, -2}, {3, 3, 3}};
+  MediumDesc& m = d.media.emplace_back();
+  m.name = "fog";
+  m.medium = fog;
+  return d;
+}
+
+RenderOptions with_connections(bool on) {
+  RenderOptions o;
+  o.light_vertices = on;
+  return o;
+}
+
+TEST(LightVertex, ConnectionsRenderTheSameExpectedImage) {
+  const Scene scene = build_scene(shaft_and_pool_scene(6));
+  const EstimatorNoise noise =
+      expect_estimators_agree(scene, with_connections(true), with_connections(false));
+  // Where multiple scattering from the spot dominates, the connections must
+  // pay for themselves in noise (the bench measures time against error).
+  EXPECT_LT(noise.median_ratio, 0.8);
+}
+
+TEST(LightVertex, RespectsTheMaximumDepth) {
+  // At max_depth 1 only single scattering exists: a connection (two events)
+  // must add nothing, or the two estimators would differ.
+  const Scene scene = build_scene(shaft_and_pool_scene(1));
+  expect_estimators_agree(scene, with_connections(true), with_connections(false));
+}
+
+}  // namespace
+}  // namespace vesper::test
