@@ -28,7 +28,7 @@ struct Config {
   bool equiangular = true;
   bool equiangular_in_cone = true;
   std::optional<LightSelection> light_selection;  // default: the scene's
-  bool light_vertices = true;
+  std::optional<bool> light_vertices{};  // default: RenderOptions' automatic choice
 };
 
 struct Measurement {
@@ -145,6 +145,7 @@ int main(int argc, char** argv) {
                      LightSelection::PowerUniform,
                      false};
   const Config no_lv{"light-vertex connections off", true, true, true, std::nullopt, false};
+  const Config lv_on{"light-vertex connections on", true, true, true, std::nullopt, true};
 
   if (wanted(only, "fog-shafts"))
     run_scene("fog-shafts (homogeneous fog, spot light)", scenes / "fog-shafts/scene.json",
@@ -166,7 +167,7 @@ int main(int argc, char** argv) {
     run_scene("smoke (shared smoke.vdb, quad + point light)", scenes / "smoke/scene.json",
               {{"default (majorant grid, equiangular)", true, true, true, std::nullopt},
                {"majorant grid off (global majorant)", false, true, true, std::nullopt},
-               no_lv,
+               lv_on,
                {"equiangular off", true, false, true, std::nullopt},
                start},
               {}, quick);

@@ -20,7 +20,7 @@ Rgb shadow_transmittance(const Scene& scene, const Ray& shadow, Sampler& sampler
 }
 
 struct NoDeltaWeight {
-  float operator()(size_t) const { return 1.f; }
+  float operator()(size_t, const Vec3&) const { return 1.f; }
 };
 
 struct DirectSample {
@@ -32,8 +32,8 @@ struct DirectSample {
 
 // One light sample for the point at.p, chosen for `at` (light_sampler.h), at the path's `time`.
 // `eval(wi)` returns {f * |cos| (or phase), its diffuse part, scattering pdf};
-// `delta_weight(light)` is the MIS weight of this strategy for delta lights (1 unless equiangular
-// sampling competes).
+// `delta_weight(light, light point)` is the MIS weight of this strategy for delta (and sphere)
+// lights: 1 unless equiangular sampling or light-vertex connections compete.
 template <bool kMedia, typename Eval, typename DeltaWeight = NoDeltaWeight>
 DirectSample sample_direct(const Scene& scene, const ShadingPoint& at, const Vec3& offset_normal,
                            float time, Sampler& sampler, uint32_t& rays, const Eval& eval,
@@ -67,7 +67,8 @@ DirectSample sample_direct(const Scene& scene, const ShadingPoint& at, const Vec
   const Rgb tr = shadow_transmittance<kMedia>(scene, Ray{origin, dir, tmax, time}, sampler, rays);
   if (tr.is_black()) return out;
   const float light_pdf = pmf * ls->pdf;
-  const float w = ls->is_delta ? delta_weight(li) : power_heuristic(light_pdf, scatter_pdf);
+  const float w = ls->is_delta ? delta_weight(li, p + ls->wi * ls->distance)
+                               : power_heuristic(light_pdf, scatter_pdf);
   const Rgb light = ls->radiance * tr * (w / light_pdf);
   out.value = f * light;
   out.diffuse = f_diffuse * light;

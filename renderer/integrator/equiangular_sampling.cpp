@@ -60,6 +60,7 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const Vec2 u_light = light.bounds()->is_point() ? Vec2{} : sampler.next2();
   const auto ls = light.sample(x, u_light);
   if (!(pdf_e > 0.f) || c.sigma_s.is_black() || !ls || ls->radiance.is_black()) return out;
+  out.light_point = x + ls->wi * ls->distance;
   const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y, ray.time)};
   const float f = phase.eval(-ray.dir, ls->wi);
   const Rgb tr_light = shadow_transmittance<true>(

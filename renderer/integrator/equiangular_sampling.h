@@ -22,7 +22,8 @@ float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<Majo
 struct EquiangularSample {
   Rgb value;  // path throughput included; black when nothing was added
   size_t light = 0;
-  float t = 0;  // the distance sampled
+  float t = 0;        // the distance sampled
+  Vec3 light_point{};  // the point sampled on the light
 };
 
 // One single-scattering estimate along `ray`: a light picked by the scene's

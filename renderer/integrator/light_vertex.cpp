@@ -1,9 +1,12 @@
 #include "renderer/integrator/light_vertex.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "renderer/integrator/volume_tracking.h"
+#include "renderer/lights/sphere_cone.h"
 #include "renderer/math/constants.h"
 #include "renderer/math/frame.h"
 
@@ -12,8 +15,10 @@ namespace {
 
 bool connectable(const LightSampler& ls, size_t i) {
   const std::optional<LightBounds>& b = ls.bounds()[i];
-  return b && b->is_point() && ls.powers()[i] > 0.f;
+  return b && (b->is_point() || b->sphere) && ls.powers()[i] > 0.f;
 }
+
+float sphere_radius(const LightBounds& b) { return 0.5f * (b.hi.x - b.lo.x); }
 
 // The connectable lights' total power: light vertices pick by power.
 float connectable_power(const LightSampler& ls) {
@@ -24,8 +29,21 @@ float connectable_power(const LightSampler& ls) {
 }
 
 // Emission directions are uniform in the light's cone (a point light's is
-// the sphere: cos_cone = -1).
+// the sphere: cos_cone = -1). A sphere light's ray then leaves a point of
+// the hemisphere facing that direction, uniform in projected area.
 float emission_pdf(const LightBounds& b) { return 1.f / (2.f * kPi * (1.f - b.cos_cone)); }
+
+// The light-vertex strategy's density of (light point s, y) without the
+// factor the path tracer's density shares: cos_s / |y - s|^2 for a sphere
+// light (where next-event estimation picks s by solid angle), nothing for a
+// delta light (whose 1 / |y - s|^2 the caller applies). `along` is
+// distance_density from s to y.
+float light_side_density(const LightBounds& b, float pmf, float along) {
+  const float density = pmf * emission_pdf(b) * along;
+  if (!b.sphere) return density;
+  const float r = sphere_radius(b);
+  return density / (kPi * r * r);
+}
 
 std::vector<MajorantSpan>& scratch_spans() {
   thread_local std::vector<MajorantSpan> spans;
@@ -47,6 +65,35 @@ float distance_density(const MediaSet& media, const Vec3& from, const Vec3& to, 
   return analytic_scatter_pdf(media, spans, ray, dist);
 }
 
+struct Emission {
+  Vec3 origin, dir;
+  float weight = 0;  // per unit intensity: 1 / (the emission pdfs)
+};
+
+// Where and in which direction the light ray leaves light b; u_dir picks
+// the direction, u_disk (sphere lights) the point. The weight is 1 / the
+// emission pdfs per unit intensity: a sphere's radiance I / (pi r^2) times
+// cos_s over the point's density cos_s / (pi r^2) leaves 1 / emission_pdf.
+Emission sample_emission(const LightBounds& b, Vec2 u_dir, Vec2 u_disk) {
+  Emission e;
+  const float cos_t = 1.f - u_dir.x * (1.f - b.cos_cone);
+  const float sin_t = std::sqrt(std::max(0.f, 1.f - cos_t * cos_t));
+  const float phi = 2.f * kPi * u_dir.y;
+  const Vec3 axis = length_squared(b.axis) > 0.f ? b.axis : Vec3(0.f, 0.f, 1.f);
+  e.dir = normalize(
+      Frame::from_normal(axis).to_world({sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t}));
+  e.weight = 1.f / emission_pdf(b);
+  e.origin = *b.aim();
+  if (b.sphere) {
+    const float rho = std::sqrt(u_disk.x), phi_d = 2.f * kPi * u_disk.y;
+    const float dx = rho * std::cos(phi_d), dy = rho * std::sin(phi_d);
+    const Frame f = Frame::from_normal(e.dir);
+    e.origin += f.to_world({dx, dy, std::sqrt(std::max(0.f, 1.f - dx * dx - dy * dy))}) *
+                sphere_radius(b);
+  }
+  return e;
+}
+
 }  // namespace
 
 bool has_connectable_lights(const Scene& scene) {
@@ -59,6 +106,7 @@ std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sa
   const float total = connectable_power(ls);
   const float u_light = sampler.next1();
   const Vec2 u_dir = sampler.next2();
+  const Vec2 u_disk = sampler.next2();
   if (!(total > 0.f)) return std::nullopt;
   size_t li = ls.powers().size();
   float cum = 0.f;
@@ -70,18 +118,9 @@ std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sa
   }
   const LightBounds& b = *ls.bounds()[li];
   const float pmf = ls.powers()[li] / total;
-  const float cos_t = 1.f - u_dir.x * (1.f - b.cos_cone);
-  const float sin_t = std::sqrt(std::max(0.f, 1.f - cos_t * cos_t));
-  const float phi = 2.f * kPi * u_dir.y;
-  const Vec3 axis = length_squared(b.axis) > 0.f ? b.axis : Vec3(0.f, 0.f, 1.f);
-  const Vec3 dir = normalize(
-      Frame::from_normal(axis).to_world({sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t}));
-  // The light's intensity toward dir: its radiance seen from unit distance.
-  const std::optional<LightSample> at_unit = scene.lights[li].sample(b.lo + dir, Vec2{});
-  if (!at_unit || at_unit->radiance.is_black()) return std::nullopt;
-  const Rgb intensity = at_unit->radiance * (at_unit->distance * at_unit->distance);
+  const Emission e = sample_emission(b, u_dir, u_disk);
 
-  const Ray ray{b.lo, dir, std::numeric_limits<float>::infinity(), time};
+  const Ray ray{e.origin, e.dir, std::numeric_limits<float>::infinity(), time};
   const std::optional<SurfaceHit> hit = scene.accel->intersect(ray);
   ++rays;
   const float tmax = hit ? hit->t : std::numeric_limits<float>::infinity();
@@ -89,38 +128,57 @@ std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sa
   scene.media.majorant_spans(ray, tmax, spans);
   Rgb weight(1.f);
   const FreeFlight flight = sample_free_flight(scene.media, spans, ray, sampler, weight);
+  if (flight.event == FlightEvent::Absorbed) return std::nullopt;
   LightVertex v;
   v.light = li;
-  v.alpha = intensity * weight * (1.f / (pmf * emission_pdf(b)));
-  if (flight.event == FlightEvent::Absorbed) return std::nullopt;
+  v.light_point = e.origin;
   if (flight.event == FlightEvent::Scattered) {
     v.p = ray.origin + ray.dir * flight.t;
     v.g = flight.g;
-    return v;
+  } else {
+    if (!hit || hit->light >= 0 || bsdf_is_delta(scene.materials[hit->material]))
+      return std::nullopt;
+    v.p = hit->p;
+    v.n = hit->n;
+    v.material = hit->material;
   }
-  if (!hit || hit->light >= 0 || bsdf_is_delta(scene.materials[hit->material])) return std::nullopt;
-  v.p = hit->p;
-  v.n = hit->n;
-  v.material = hit->material;
+  // A spot's intensity (a spot sphere light's radiance too) depends on the
+  // receiver's direction from the centre.
+  const Vec3 from_centre = v.p - *b.aim();
+  if (!(length_squared(from_centre) > 0.f)) return std::nullopt;
+  const Rgb intensity = scene.lights[li].intensity_toward(normalize(from_centre));
+  if (intensity.is_black()) return std::nullopt;
+  v.alpha = intensity * weight * (e.weight / pmf);
   return v;
 }
 
 float light_vertex_weight(const Scene& scene, const Vec3& x, float pdf_x, const Vec3& y,
-                          const Vec3& n_y, const Vec3& n_y_shading, size_t light, float time) {
+                          const Vec3& n_y, const Vec3& n_y_shading, size_t light,
+                          const Vec3& light_point, float time) {
   const LightSampler& ls = scene.light_sampler;
   if (!connectable(ls, light) || !(pdf_x > 0.f)) return 0.f;
   const LightBounds& b = *ls.bounds()[light];
-  const Vec3 from_light = y - b.lo, from_x = y - x;
+  const Vec3 s = b.sphere ? light_point : b.lo;  // a delta light's own position, unrounded
+  const Vec3 from_light = y - s, from_x = y - x;
   const float r2 = length_squared(from_light), d2 = length_squared(from_x);
   if (!(r2 > 0.f) || !(d2 > 0.f)) return 0.f;
   const Vec3 w_light = from_light / std::sqrt(r2), w_x = from_x / std::sqrt(d2);
-  if (!(dot(w_light, b.axis) > b.cos_cone) && b.cos_cone > -1.f) return 0.f;
   const bool surface = n_y.x != 0.f || n_y.y != 0.f || n_y.z != 0.f;
   const float pmf_light = ls.powers()[light] / connectable_power(ls);
-  float p_light =
-      pmf_light * emission_pdf(b) * distance_density(scene.media, b.lo, y, time, surface) / r2;
+  float p_light = light_side_density(
+      b, pmf_light, distance_density(scene.media, s, y, time, surface));
   float p_path = pdf_x * distance_density(scene.media, x, y, time, surface) / d2 *
                  ls.pmf(ShadingPoint{y, n_y_shading}, light);
+  if (b.cos_cone > -1.f && !(dot(w_light, b.axis) > b.cos_cone)) return 0.f;  // not emitted
+  if (b.sphere) {
+    const Vec3 centre = *b.aim();
+    if (!(dot(s - centre, w_light) > 0.f)) return 0.f;  // a point facing away from y
+    const std::optional<SphereCone> cone = SphereCone::toward(y, centre, sphere_radius(b));
+    if (!cone) return 0.f;
+    p_path *= cone->pdf();
+  } else {
+    p_light /= r2;
+  }
   if (surface) {
     p_light *= std::abs(dot(n_y, w_light));
     p_path *= std::abs(dot(n_y, w_x));

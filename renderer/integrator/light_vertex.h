@@ -17,7 +17,11 @@
 // distance sampling and light choice, P_light that of the light vertex; both
 // are deterministic functions of (x, y, light), evaluated by the same code
 // on both sides, so the weights are a partition of unity and the sum is
-// unbiased. Only delta point and spot lights (radius 0) take part.
+// unbiased. Point and spot lights take part, with or without a radius: a
+// sphere light's vertex leaves a point on the sphere (uniform by area) in a
+// cosine-distributed direction, and the weights compare densities of the
+// pair (light point, y), where next-event estimation picks the light point
+// by solid angle (sphere_cone.h).
 #include <optional>
 
 #include "renderer/core/ray.h"
@@ -31,13 +35,14 @@ struct LightVertex {
   Vec3 p;
   Vec3 n{};  // geometric normal of a surface vertex; zero in a medium
   size_t light = 0;
-  Rgb alpha;              // I(w) * flight weight / (pmf * emission pdf): the flux it carries
+  Vec3 light_point;  // where the light ray left: the light's position, or a point on its sphere
+  Rgb alpha;  // emitted * flight weight / (pmf * emission pdfs): the flux it carries
   uint32_t material = 0;  // surface vertices
   float g = 0;            // phase asymmetry of medium vertices
   bool on_surface() const { return n.x != 0.f || n.y != 0.f || n.z != 0.f; }
 };
 
-// Whether the scene has lights that take part (delta point and spot lights).
+// Whether the scene has lights that take part (point and spot lights).
 bool has_connectable_lights(const Scene& scene);
 
 // Traces one light vertex at shutter time `time`; nullopt when the light ray
@@ -45,12 +50,13 @@ bool has_connectable_lights(const Scene& scene);
 std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sampler& sampler,
                                               uint32_t& rays);
 
-// The weight u above for the path x -> y -> light, where x made the ray
-// toward y with direction pdf `pdf_x` (solid angle) and y (normal n_y; zero
-// in a medium) sees x from -dir. `n_y_shading` is the normal the path
-// tracer's light choice at y uses (ShadingPoint::n). 0 when the light does
-// not take part.
+// The weight u above for the path x -> y -> light_point on `light`, where x
+// made the ray toward y with direction pdf `pdf_x` (solid angle) and y has
+// the geometric normal n_y (zero in a medium). `n_y_shading` is the normal
+// the path tracer's light choice at y uses (ShadingPoint::n). 0 when the
+// light does not take part.
 float light_vertex_weight(const Scene& scene, const Vec3& x, float pdf_x, const Vec3& y,
-                          const Vec3& n_y, const Vec3& n_y_shading, size_t light, float time);
+                          const Vec3& n_y, const Vec3& n_y_shading, size_t light,
+                          const Vec3& light_point, float time);
 
 }  // namespace vesper

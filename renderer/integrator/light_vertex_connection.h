@@ -24,8 +24,7 @@ Rgb connect_light_vertex(const Scene& scene, const LightVertex& lv, const Vec3& 
   const Vec3 dir = to_y / std::sqrt(d2);
   const auto [f_x, pdf_x] = eval(dir);
   if (f_x.is_black()) return {};
-  const Vec3 light_pos = *scene.light_sampler.bounds()[lv.light]->aim();
-  const Vec3 to_light = normalize(light_pos - lv.p);
+  const Vec3 to_light = normalize(lv.light_point - lv.p);
   Rgb f_y;
   float cos_y = 1.f;
   Vec3 n_y_shading{};
@@ -51,7 +50,8 @@ Rgb connect_light_vertex(const Scene& scene, const LightVertex& lv, const Vec3& 
   const Rgb tr = shadow_transmittance<true>(
       scene, Ray{origin, span / dist, dist * (1.f - 1e-4f), time}, sampler, rays);
   if (tr.is_black()) return {};
-  const float u = light_vertex_weight(scene, x, pdf_x, lv.p, lv.n, n_y_shading, lv.light, time);
+  const float u = light_vertex_weight(scene, x, pdf_x, lv.p, lv.n, n_y_shading, lv.light,
+                                      lv.light_point, time);
   return f_x * tr * f_y * lv.alpha * (cos_y * u / d2);
 }
 

@@ -28,8 +28,8 @@ void add_equiangular(PathContext& ctx, const std::vector<MajorantSpan>& spans, i
   EquiangularSample es = sample_equiangular(ctx.scene, ray, spans, path.throughput, ctx.sampler,
                                             ctx.result.rays, ctx.options.equiangular_in_cone);
   if (es.value.is_black()) return;
-  es.value *= 1.f - ctx.light_vertex_share(path, ray.origin + ray.dir * es.t, Vec3(0.f), Vec3(0.f),
-                                           es.light);
+  es.value *= 1.f - ctx.light_vertex_share(path, ray.origin + ray.dir * es.t, Vec3(0.f),
+                                           Vec3(0.f), es.light, es.light_point);
   const int group = ctx.scene.light_group[es.light];
   if (depth == 0 && ctx.options.record) {
     ctx.add_as(FirstEvent::Volume, false, group, es.value);
@@ -55,13 +55,14 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const std::vector<Majorant
     return std::tuple{Rgb(f), Rgb{}, f};
   };
   const float pdf_a = equiangular ? analytic_scatter_pdf(scene.media, spans, ray, t) : 0.f;
-  auto delta_weight = [&](size_t li) {
-    const float w = equiangular
-                        ? power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t,
-                                                                 ctx.options.equiangular_in_cone))
-                        : 1.f;
-    return w * (1.f - ctx.light_vertex_share(path, p, Vec3(0.f), Vec3(0.f), li));
+  auto delta_weight = [&](size_t li, const Vec3& light_point) {
+    const float w =
+        equiangular ? power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t,
+                                                             ctx.options.equiangular_in_cone))
+                    : 1.f;
+    return w * (1.f - ctx.light_vertex_share(path, p, Vec3(0.f), Vec3(0.f), li, light_point));
   };
+
   const DirectSample ds =
       sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
                           ctx.result.rays, eval_phase, delta_weight);

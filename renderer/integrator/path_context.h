@@ -49,10 +49,10 @@ struct PathContext {
   // vertex that made path.ray (0 where no connection was made from it): the
   // path tracer's own estimates of that path are scaled by 1 - this.
   float light_vertex_share(const PathState& path, const Vec3& y, const Vec3& n_y,
-                           const Vec3& n_y_shading, size_t light) const {
+                           const Vec3& n_y_shading, size_t light, const Vec3& light_point) const {
     if (!light_vertices || path.count_emission_fully) return 0.f;
     return light_vertex_weight(scene, path.prev_vertex.p, path.prev_scatter_pdf, y, n_y,
-                               n_y_shading, light, path.ray.time);
+                               n_y_shading, light, light_point, path.ray.time);
   }
 
   // Adds a contribution to the pixel and, for layers/AOVs, to the path record.

@@ -56,9 +56,10 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const SurfaceHit& hit, con
                                     const Bsdf& bsdf, const Frame& frame, const Vec3& wo, int depth,
                                     const PathState& path) {
   const bool want_diffuse = ctx.options.record != nullptr;
-  auto delta_weight = [&](size_t li) {
-    return 1.f - ctx.light_vertex_share(path, hit.p, hit.n, at.n, li);
+  auto delta_weight = [&](size_t li, const Vec3& light_point) {
+    return 1.f - ctx.light_vertex_share(path, hit.p, hit.n, at.n, li, light_point);
   };
+
   const DirectSample ds = sample_direct<kMedia>(
       ctx.scene, at, hit.n, path.ray.time, ctx.sampler, ctx.result.rays,
       [&](const Vec3& wi_world) {

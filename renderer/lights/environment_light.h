@@ -59,6 +59,7 @@ struct EnvironmentLight {
     return {cos_rot * d.x - sin_rot * d.z, d.y, sin_rot * d.x + cos_rot * d.z};
   }
 
+  Rgb intensity_toward(const Vec3& /*w_from_light*/) const { return {}; }
   Rgb emitted(const Vec3& wi) const {
     if (!map) return constant;
     const Vec2 uv = local_dir_to_uv(to_local(wi));

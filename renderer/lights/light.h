@@ -47,6 +47,9 @@ class Light {
   Rgb emitted(const Vec3& wi) const {
     return std::visit([&](const auto& l) { return l.emitted(wi); }, light_);
   }
+  Rgb intensity_toward(const Vec3& w_from_light) const {
+    return std::visit([&](const auto& l) { return l.intensity_toward(w_from_light); }, light_);
+  }
   float power(float scene_radius) const {
     return std::visit([&](const auto& l) { return l.power(scene_radius); }, light_);
   }

@@ -25,6 +25,11 @@ concept LightInterface = requires(const L& light, const Vec3& p, Vec2 u, const V
   // The radiance a ray travelling along wi receives when it reaches the
   // light; black for delta lights.
   { light.emitted(wi) } -> std::same_as<Rgb>;
+  // Radiant intensity toward the unit direction wi from the light's centre:
+  // point and spot lights, with or without a radius (a sphere light emits
+  // it as the radiance I / (pi r^2), sphere_cone.h); black for lights with
+  // an area or at infinity.
+  { light.intensity_toward(wi) } -> std::same_as<Rgb>;
   // Emitted power in render units (chooses lights); scene_radius bounds
   // the area lit by lights at infinity.
   { light.power(scene_radius) } -> std::same_as<float>;

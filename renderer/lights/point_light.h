@@ -32,6 +32,7 @@ struct PointLight {
   }
   float pdf(const Vec3& /*wi*/, float /*distance*/) const { return 0.f; }
   Rgb emitted(const Vec3& /*wi*/) const { return {}; }
+  Rgb intensity_toward(const Vec3& /*w_from_light*/) const { return intensity; }
   float power(float /*scene_radius*/) const { return 4.f * kPi * intensity.average(); }
   std::optional<LightBounds> bounds() const { return sphere_bounds(position, radius); }
 };

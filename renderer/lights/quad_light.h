@@ -43,6 +43,7 @@ struct QuadLight {
     return distance * distance / (cos_l * area);
   }
   Rgb emitted(const Vec3& wi) const { return dot(wi, normal) < 0.f ? radiance : Rgb{}; }
+  Rgb intensity_toward(const Vec3& /*w_from_light*/) const { return {}; }
   float power(float /*scene_radius*/) const { return kPi * area * radiance.average(); }
   std::optional<LightBounds> bounds() const {
     const Vec3 far = corner + edge1 + edge2;

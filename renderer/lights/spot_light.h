@@ -54,6 +54,7 @@ struct SpotLight {
   }
   float pdf(const Vec3& /*wi*/, float /*distance*/) const { return 0.f; }
   Rgb emitted(const Vec3& /*wi*/) const { return {}; }
+  Rgb intensity_toward(const Vec3& w_from_light) const { return intensity * falloff(w_from_light); }
   float power(float /*scene_radius*/) const {
     return intensity.average() * 2.f * kPi * (1.f - 0.5f * (cos_falloff_start + cos_cone));
   }

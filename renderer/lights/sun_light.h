@@ -40,6 +40,7 @@ struct SunLight {
     if (is_delta() || dot(wi, direction) < cos_max) return 0.f;
     return uniform_cone_pdf(cos_max);
   }
+  Rgb intensity_toward(const Vec3& /*w_from_light*/) const { return {}; }
   Rgb emitted(const Vec3& wi) const {
     if (is_delta() || dot(wi, direction) < cos_max) return {};
     return radiance;

@@ -59,7 +59,9 @@ struct RenderOptions {
   bool layer_variance = false;
   bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
   bool equiangular_in_cone = true;  // ... only over the part of a ray inside a spot light's cone
-  bool light_vertices = true;       // connections to a vertex traced from point/spot lights (media)
+  // Connections to a vertex traced from point/spot lights (media only);
+  // unset: on where every medium is homogeneous (render.cpp says why).
+  std::optional<bool> light_vertices;
   // Ranks per Cryptomatte type (Aov::Cryptomatte): (depth + 1) / 2 RGBA layers
   // each, in [1, kMaxCryptoDepth] (std::invalid_argument otherwise).
   int cryptomatte_depth = 6;

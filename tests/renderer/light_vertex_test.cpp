@@ -12,7 +12,7 @@ namespace {
 // A spot light's shaft onto a floor in fog, an occluder, and a point light
 // beside it: light reaches most of the image only after two or more
 // scattering events (fog beside the shaft, fog lit by the floor's pool).
-SceneDescription shaft_and_pool_scene(int max_depth) {
+SceneDescription shaft_and_pool_scene(int max_depth, double radius = 0) {
   SceneDescription d = empty_scene(24, 24, 64, max_depth);
   d.camera.from = {0, 1, 4};
   d.camera.to = {0, 0.8, 0};
@@ -22,8 +22,8 @@ SceneDescription shaft_and_pool_scene(int max_depth) {
   add_quad(d, {-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, grey);
   add_quad(d, {-3, 0, -2}, {6, 0, 0}, {0, 3, 0}, shiny);
   add_quad(d, {-0.3, 1.6, -0.3}, {0.6, 0, 0}, {0, 0, 0.6}, grey);  // occluder in the shaft
-  add_light(d, SpotLightDesc{{0.1, 2.6, 0.0}, normalize(Vec3d(0, -1, 0.1)), Rgb(30.f), 25.0, 20.0});
-  add_light(d, PointLightDesc{{-1.2, 0.6, 0.8}, Rgb(0.3f, 0.2f, 0.1f)});
+  add_light(d, SpotLightDesc{{0.1, 2.6, 0.0}, normalize(Vec3d(0, -1, 0.1)), Rgb(30.f), 25.0, 20.0, radius});
+  add_light(d, PointLightDesc{{-1.2, 0.6, 0.8}, Rgb(0.3f, 0.2f, 0.1f), radius});
   HomogeneousMediumDesc fog;
   fog.sigma_s = Rgb(0.35f, 0.3f, 0.25f);
   fog.sigma_a = Rgb(0.05f);
@@ -47,6 +47,15 @@ TEST(LightVertex, ConnectionsRenderTheSameExpectedImage) {
       expect_estimators_agree(scene, with_connections(true), with_connections(false));
   // Where multiple scattering from the spot dominates, the connections must
   // pay for themselves in noise (the bench measures time against error).
+  EXPECT_LT(noise.median_ratio, 0.8);
+}
+
+TEST(LightVertex, SphereLightsRenderTheSameExpectedImage) {
+  // Lights with a radius: the vertex leaves a point on the sphere, and the
+  // weights compare densities of (that point, y).
+  const Scene scene = build_scene(shaft_and_pool_scene(6, 0.15));
+  const EstimatorNoise noise =
+      expect_estimators_agree(scene, with_connections(true), with_connections(false));
   EXPECT_LT(noise.median_ratio, 0.8);
 }
 
