@@ -54,9 +54,9 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const Rgb tr_light = shadow_transmittance<true>(
       scene, Ray{x, ls->wi, ls->distance * (1.f - 1e-4f), ray.time}, sampler, rays);
   if (tr_light.is_black()) return out;
-  const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
+  const float pdf_a = distance_sampling_proxy_pdf(scene.media, spans, ray, t);
   const float w = power_heuristic(pdf_e, pdf_a);
-  const Rgb tr = analytic_transmittance(scene.media, spans, ray, t);
+  const Rgb tr = estimate_transmittance_to(scene.media, spans, ray, t, sampler);
   out.value = throughput * tr * c.sigma_s * ls->radiance * tr_light * (f * w / (pdf_e * pmf));
   return out;
 }

@@ -1,6 +1,5 @@
 #include "renderer/integrator/medium_step.h"
 
-#include <algorithm>
 #include <limits>
 #include <optional>
 #include <tuple>
@@ -13,11 +12,6 @@
 
 namespace vesper {
 namespace {
-
-bool all_analytic(const std::vector<MajorantSpan>& spans) {
-  return !spans.empty() &&
-         std::all_of(spans.begin(), spans.end(), [](const MajorantSpan& s) { return s.analytic; });
-}
 
 // Adds the equiangular estimate along ray. At depth 0 its scattering would be
 // the path's first event: a volume one, whatever the path does next.
@@ -51,9 +45,14 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const Ray& ray,
   };
   DirectSample ds;
   if (equiangular) {
-    const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
+    // The complement of sample_equiangular's weight at this t (its header
+    // says why any such partition of unity is unbiased). Where equiangular
+    // cannot pick t this strategy takes it all, also when the proxy has
+    // underflowed (power_heuristic(0, 0) would drop it).
+    const float pdf_a = distance_sampling_proxy_pdf(scene.media, spans, ray, t);
     auto delta_weight = [&](size_t li) {
-      return power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t));
+      const float pdf_e = equiangular_pdf(scene.lights[li], ray, spans, t);
+      return pdf_e > 0.f ? power_heuristic(pdf_a, pdf_e) : 1.f;
     };
     ds = sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
                              ctx.result.rays, eval_phase, delta_weight);
@@ -118,7 +117,7 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
     ctx.result.camera_transmittance =
         estimate_transmittance(scene.media, path.ray, tmax, ctx.sampler).average();
   const bool equiangular =
-      options.equiangular && all_analytic(spans) && ctx.have_lights() && depth < options.max_depth;
+      options.equiangular && !spans.empty() && ctx.have_lights() && depth < options.max_depth;
   if (equiangular) add_equiangular(ctx, path.ray, spans, depth, path.throughput);
 
   const FreeFlight flight = sample_free_flight_with_emission(ctx, spans, tmax, depth, path);

@@ -57,7 +57,9 @@ struct RenderOptions {
   // beauty's variance.R/G/B): 192 more bytes per pixel for each, while
   // rendering. For the regression batch's per-layer noise model.
   bool layer_variance = false;
-  bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
+  // Equiangular sampling toward point/spot lights in all media (MIS with
+  // distance sampling); off only to measure it (bench, tests).
+  bool equiangular = true;
   // Ranks per Cryptomatte type (Aov::Cryptomatte): (depth + 1) / 2 RGBA layers
   // each, in [1, kMaxCryptoDepth] (std::invalid_argument otherwise).
   int cryptomatte_depth = 6;
