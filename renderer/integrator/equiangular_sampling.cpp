@@ -4,6 +4,7 @@
 
 #include "renderer/integrator/direct_lighting.h"
 #include "renderer/integrator/equiangular.h"
+#include "renderer/integrator/equiangular_reach.h"
 #include "renderer/integrator/volume_tracking.h"
 #include "renderer/media/henyey_greenstein.h"
 
@@ -20,11 +21,19 @@ std::optional<EquiangularSegment> segment_toward(const Light& light, const Ray& 
   return EquiangularSegment::make(ray.origin, ray.dir, *aim, spans.front().t0, spans.back().t1);
 }
 
+// segment_toward, for lights within reach of the ray (equiangular_reach.h).
+std::optional<EquiangularSegment> eligible_segment(const Light& light, const Ray& ray,
+                                                   const std::vector<MajorantSpan>& spans) {
+  auto seg = segment_toward(light, ray, spans);
+  if (seg && !light_within_reach(*seg, spans)) return std::nullopt;
+  return seg;
+}
+
 }  // namespace
 
 float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<MajorantSpan>& spans,
                       float t) {
-  const auto seg = segment_toward(light, ray, spans);
+  const auto seg = eligible_segment(light, ray, spans);
   return seg ? seg->pdf(t) : 0.f;
 }
 
@@ -37,7 +46,7 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const Vec2 u_eq = sampler.next2();
   out.light = li;
   const Light& light = scene.lights[li];
-  const auto seg = segment_toward(light, ray, spans);
+  const auto seg = eligible_segment(light, ray, spans);
   if (!seg || !(pmf > 0.f)) return out;
   const float t = seg->sample(u_eq.x);
   const float pdf_e = seg->pdf(t);
@@ -49,6 +58,10 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const Vec2 u_light = light.bounds()->is_point() ? Vec2{} : sampler.next2();
   const auto ls = light.sample(x, u_light);
   if (!(pdf_e > 0.f) || c.sigma_s.is_black() || !ls || ls->radiance.is_black()) return out;
+  // The transmittance to t before the shadow ray: in dense grid media ratio
+  // tracking often ends early (Russian roulette), and then no ray is needed.
+  const Rgb tr = estimate_transmittance_to(scene.media, spans, ray, t, sampler);
+  if (tr.is_black()) return out;
   const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y, ray.time)};
   const float f = phase.eval(-ray.dir, ls->wi);
   const Rgb tr_light = shadow_transmittance<true>(
@@ -56,7 +69,6 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   if (tr_light.is_black()) return out;
   const float pdf_a = distance_sampling_proxy_pdf(scene.media, spans, ray, t);
   const float w = power_heuristic(pdf_e, pdf_a);
-  const Rgb tr = estimate_transmittance_to(scene.media, spans, ray, t, sampler);
   out.value = throughput * tr * c.sigma_s * ls->radiance * tr_light * (f * w / (pdf_e * pmf));
   return out;
 }

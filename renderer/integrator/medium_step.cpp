@@ -49,10 +49,10 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const Ray& ray,
     // says why any such partition of unity is unbiased). Where equiangular
     // cannot pick t this strategy takes it all, also when the proxy has
     // underflowed (power_heuristic(0, 0) would drop it).
-    const float pdf_a = distance_sampling_proxy_pdf(scene.media, spans, ray, t);
     auto delta_weight = [&](size_t li) {
       const float pdf_e = equiangular_pdf(scene.lights[li], ray, spans, t);
-      return pdf_e > 0.f ? power_heuristic(pdf_a, pdf_e) : 1.f;
+      if (!(pdf_e > 0.f)) return 1.f;
+      return power_heuristic(distance_sampling_proxy_pdf(scene.media, spans, ray, t), pdf_e);
     };
     ds = sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
                              ctx.result.rays, eval_phase, delta_weight);
