@@ -88,7 +88,8 @@ std::filesystem::path write_lantern_scene() {
   write_vdb_fog_volume(generate_cloud(cloud), "density", dir / "cloud.vdb");
   std::ofstream(dir / "scene.json") << R"({
   "format": "vesper-scene/1",
-  "camera": {"type": "perspective", "from": [0, 0.5, 2.4], "to": [0.05, 0.3, 0], "fov": 40},
+  "camera": {"type": "perspective", "from": [0, 0.5, 2.4], "to": [0.05, 0.3, 0], "up": [0, 1, 0],
+             "fov": 40},
   "film": {"width": 160, "height": 120, "filter": "gaussian"},
   "render": {"spp": 16, "max_depth": 8, "seed": 3},
   "materials": {"ground": {"type": "diffuse", "albedo": [0.4, 0.4, 0.4]}},

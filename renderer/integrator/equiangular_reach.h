@@ -45,4 +45,32 @@ inline bool light_within_reach(const EquiangularSegment& seg,
   return optical + sigma_near * dist < kEquiangularReach;
 }
 
+// Optical depth (mean free paths, by the majorants) from the start of the
+// ray's media beyond which equiangular sampling places no distance.
+inline constexpr double kEquiangularDepth = 4.0;
+
+// The spans of a ray through grid media up to where their majorant optical
+// depth reaches kEquiangularDepth (the last one cut there), into `out`:
+// beyond, the transmittance is below e^-4 by any estimate and ratio
+// tracking's estimate of it mostly noise, so delta tracking alone takes
+// those distances (equiangular_pdf is 0 there). Rays through homogeneous
+// media only keep all their spans.
+inline void spans_within_depth(const std::vector<MajorantSpan>& spans,
+                               std::vector<MajorantSpan>& out) {
+  out.clear();
+  bool grid = false;
+  for (const MajorantSpan& s : spans) grid = grid || !s.analytic;
+  double optical = 0;
+  for (MajorantSpan s : spans) {
+    const double span_depth = double(s.sigma_maj) * (s.t1 - s.t0);
+    if (grid && optical + span_depth > kEquiangularDepth) {
+      s.t1 = s.t0 + float((kEquiangularDepth - optical) / s.sigma_maj);
+      out.push_back(s);
+      return;
+    }
+    optical += span_depth;
+    out.push_back(s);
+  }
+}
+
 }  // namespace vesper

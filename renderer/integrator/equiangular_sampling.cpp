@@ -21,11 +21,14 @@ std::optional<EquiangularSegment> segment_toward(const Light& light, const Ray& 
   return EquiangularSegment::make(ray.origin, ray.dir, *aim, spans.front().t0, spans.back().t1);
 }
 
-// segment_toward, for lights within reach of the ray (equiangular_reach.h).
+// segment_toward over the spans within depth, for lights within reach of
+// the ray (equiangular_reach.h).
 std::optional<EquiangularSegment> eligible_segment(const Light& light, const Ray& ray,
                                                    const std::vector<MajorantSpan>& spans) {
-  auto seg = segment_toward(light, ray, spans);
-  if (seg && !light_within_reach(*seg, spans)) return std::nullopt;
+  thread_local std::vector<MajorantSpan> near;
+  spans_within_depth(spans, near);
+  auto seg = segment_toward(light, ray, near);
+  if (seg && !light_within_reach(*seg, near)) return std::nullopt;
   return seg;
 }
 
