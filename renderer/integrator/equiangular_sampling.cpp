@@ -5,6 +5,7 @@
 #include "renderer/integrator/cone_interval.h"
 #include "renderer/integrator/direct_lighting.h"
 #include "renderer/integrator/equiangular.h"
+#include "renderer/integrator/equiangular_reach.h"
 #include "renderer/integrator/volume_tracking.h"
 #include "renderer/media/henyey_greenstein.h"
 
@@ -30,11 +31,23 @@ std::optional<EquiangularSegment> segment_toward(const Light& light, const Ray& 
   return EquiangularSegment::make(ray.origin, ray.dir, *aim, lit.t0, lit.t1);
 }
 
+// segment_toward over the spans within depth, for lights within reach of
+// the ray (equiangular_reach.h).
+std::optional<EquiangularSegment> eligible_segment(const Light& light, const Ray& ray,
+                                                   const std::vector<MajorantSpan>& spans,
+                                                   bool clip_to_cone) {
+  thread_local std::vector<MajorantSpan> near;
+  spans_within_depth(spans, near);
+  auto seg = segment_toward(light, ray, near, clip_to_cone);
+  if (seg && !light_within_reach(*seg, near)) return std::nullopt;
+  return seg;
+}
+
 }  // namespace
 
 float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<MajorantSpan>& spans,
                       float t, bool clip_to_cone) {
-  const auto seg = segment_toward(light, ray, spans, clip_to_cone);
+  const auto seg = eligible_segment(light, ray, spans, clip_to_cone);
   return seg ? seg->pdf(t) : 0.f;
 }
 
@@ -47,7 +60,7 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const Vec2 u_eq = sampler.next2();
   out.light = li;
   const Light& light = scene.lights[li];
-  const auto seg = segment_toward(light, ray, spans, clip_to_cone);
+  const auto seg = eligible_segment(light, ray, spans, clip_to_cone);
   if (!seg || !(pmf > 0.f)) return out;
   const float t = seg->sample(u_eq.x);
   out.t = t;
@@ -61,14 +74,17 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
   const auto ls = light.sample(x, u_light);
   if (!(pdf_e > 0.f) || c.sigma_s.is_black() || !ls || ls->radiance.is_black()) return out;
   out.light_point = x + ls->wi * ls->distance;
+  // The transmittance to t before the shadow ray: in dense grid media ratio
+  // tracking often ends early (Russian roulette), and then no ray is needed.
+  const Rgb tr = estimate_transmittance_to(scene.media, spans, ray, t, sampler);
+  if (tr.is_black()) return out;
   const HgPhase phase{scene.media.pick_phase_g(x, u_eq.y, ray.time)};
   const float f = phase.eval(-ray.dir, ls->wi);
   const Rgb tr_light = shadow_transmittance<true>(
       scene, Ray{x, ls->wi, ls->distance * (1.f - 1e-4f), ray.time}, sampler, rays);
   if (tr_light.is_black()) return out;
-  const float pdf_a = analytic_scatter_pdf(scene.media, spans, ray, t);
+  const float pdf_a = distance_sampling_proxy_pdf(scene.media, spans, ray, t);
   const float w = power_heuristic(pdf_e, pdf_a);
-  const Rgb tr = analytic_transmittance(scene.media, spans, ray, t);
   out.value = throughput * tr * c.sigma_s * ls->radiance * tr_light * (f * w / (pdf_e * pmf));
   return out;
 }

@@ -1,9 +1,18 @@
 #pragma once
-// Equiangular sampling as a strategy of the medium step: on a ray whose
-// majorant spans are all analytic (homogeneous media, where the density of
-// distance sampling is known exactly), a distance toward a light that is a
-// single point, combined by MIS (power heuristic) with distance sampling
-// followed by next-event estimation.
+// Equiangular sampling as a strategy of the medium step: on every ray
+// through media, a distance toward a light that is a single point, combined
+// by MIS (power heuristic) with distance sampling followed by next-event
+// estimation.
+//
+// Why this is unbiased in grid media too, where the density with which delta
+// tracking scatters at t (avg sigma_s(t) times the transmittance) is unknown:
+// MIS needs only weights w_e(t) + w_d(t) = 1 for every (ray, t, light), with
+// each strategy's estimate unbiased for its weighted share. Both weights are
+// the power heuristic of equiangular_pdf against the same deterministic
+// distance_sampling_proxy_pdf (volume_tracking.h), so they are a partition of
+// unity whatever that proxy is; the equiangular estimate's transmittance to t
+// is an unbiased ratio-tracking estimate, independent of the rest of it.
+// Where only homogeneous media are crossed the proxy is the exact density.
 #include <vector>
 
 #include "renderer/core/ray.h"
@@ -22,7 +31,7 @@ float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<Majo
 struct EquiangularSample {
   Rgb value;  // path throughput included; black when nothing was added
   size_t light = 0;
-  float t = 0;        // the distance sampled
+  float t = 0;         // the distance sampled
   Vec3 light_point{};  // the point sampled on the light
 };
 

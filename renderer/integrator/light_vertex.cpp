@@ -51,8 +51,9 @@ std::vector<MajorantSpan>& scratch_spans() {
 }
 
 // Densities of distance sampling along from -> to, deterministic (not
-// estimated): what the MIS weights need. In a medium, the density of
-// scattering at `to`; on a surface, the probability of no collision before it.
+// estimated: volume_tracking.h's proxies, exact in homogeneous media): what
+// the MIS weights need. In a medium, the density of scattering at `to`; on a
+// surface, the probability of no collision before it.
 float distance_density(const MediaSet& media, const Vec3& from, const Vec3& to, float time,
                        bool to_surface) {
   const Vec3 d = to - from;
@@ -61,8 +62,8 @@ float distance_density(const MediaSet& media, const Vec3& from, const Vec3& to, 
   const Ray ray{from, d / dist, dist, time};
   auto& spans = scratch_spans();
   media.majorant_spans(ray, dist, spans);
-  if (to_surface) return analytic_transmittance(media, spans, ray, dist).average();
-  return analytic_scatter_pdf(media, spans, ray, dist);
+  if (to_surface) return distance_sampling_proxy_survival(media, spans, ray, dist);
+  return distance_sampling_proxy_pdf(media, spans, ray, dist);
 }
 
 struct Emission {
@@ -88,8 +89,8 @@ Emission sample_emission(const LightBounds& b, Vec2 u_dir, Vec2 u_disk) {
     const float rho = std::sqrt(u_disk.x), phi_d = 2.f * kPi * u_disk.y;
     const float dx = rho * std::cos(phi_d), dy = rho * std::sin(phi_d);
     const Frame f = Frame::from_normal(e.dir);
-    e.origin += f.to_world({dx, dy, std::sqrt(std::max(0.f, 1.f - dx * dx - dy * dy))}) *
-                sphere_radius(b);
+    e.origin +=
+        f.to_world({dx, dy, std::sqrt(std::max(0.f, 1.f - dx * dx - dy * dy))}) * sphere_radius(b);
   }
   return e;
 }
@@ -165,8 +166,8 @@ float light_vertex_weight(const Scene& scene, const Vec3& x, float pdf_x, const 
   const Vec3 w_light = from_light / std::sqrt(r2), w_x = from_x / std::sqrt(d2);
   const bool surface = n_y.x != 0.f || n_y.y != 0.f || n_y.z != 0.f;
   const float pmf_light = ls.powers()[light] / connectable_power(ls);
-  float p_light = light_side_density(
-      b, pmf_light, distance_density(scene.media, s, y, time, surface));
+  float p_light =
+      light_side_density(b, pmf_light, distance_density(scene.media, s, y, time, surface));
   float p_path = pdf_x * distance_density(scene.media, x, y, time, surface) / d2 *
                  ls.pmf(ShadingPoint{y, n_y_shading}, light);
   if (b.cos_cone > -1.f && !(dot(w_light, b.axis) > b.cos_cone)) return 0.f;  // not emitted

@@ -36,7 +36,7 @@ struct LightVertex {
   Vec3 n{};  // geometric normal of a surface vertex; zero in a medium
   size_t light = 0;
   Vec3 light_point;  // where the light ray left: the light's position, or a point on its sphere
-  Rgb alpha;  // emitted * flight weight / (pmf * emission pdfs): the flux it carries
+  Rgb alpha;         // emitted * flight weight / (pmf * emission pdfs): the flux it carries
   uint32_t material = 0;  // surface vertices
   float g = 0;            // phase asymmetry of medium vertices
   bool on_surface() const { return n.x != 0.f || n.y != 0.f || n.z != 0.f; }

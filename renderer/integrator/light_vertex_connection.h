@@ -50,8 +50,8 @@ Rgb connect_light_vertex(const Scene& scene, const LightVertex& lv, const Vec3& 
   const Rgb tr = shadow_transmittance<true>(
       scene, Ray{origin, span / dist, dist * (1.f - 1e-4f), time}, sampler, rays);
   if (tr.is_black()) return {};
-  const float u = light_vertex_weight(scene, x, pdf_x, lv.p, lv.n, n_y_shading, lv.light,
-                                      lv.light_point, time);
+  const float u =
+      light_vertex_weight(scene, x, pdf_x, lv.p, lv.n, n_y_shading, lv.light, lv.light_point, time);
   return f_x * tr * f_y * lv.alpha * (cos_y * u / d2);
 }
 

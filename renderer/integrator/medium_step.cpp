@@ -1,6 +1,5 @@
 #include "renderer/integrator/medium_step.h"
 
-#include <algorithm>
 #include <limits>
 #include <optional>
 #include <tuple>
@@ -15,11 +14,6 @@
 namespace vesper {
 namespace {
 
-bool all_analytic(const std::vector<MajorantSpan>& spans) {
-  return !spans.empty() &&
-         std::all_of(spans.begin(), spans.end(), [](const MajorantSpan& s) { return s.analytic; });
-}
-
 // Adds the equiangular estimate along ray. At depth 0 its scattering would be
 // the path's first event: a volume one, whatever the path does next.
 void add_equiangular(PathContext& ctx, const std::vector<MajorantSpan>& spans, int depth,
@@ -28,8 +22,8 @@ void add_equiangular(PathContext& ctx, const std::vector<MajorantSpan>& spans, i
   EquiangularSample es = sample_equiangular(ctx.scene, ray, spans, path.throughput, ctx.sampler,
                                             ctx.result.rays, ctx.options.equiangular_in_cone);
   if (es.value.is_black()) return;
-  es.value *= 1.f - ctx.light_vertex_share(path, ray.origin + ray.dir * es.t, Vec3(0.f),
-                                           Vec3(0.f), es.light, es.light_point);
+  es.value *= 1.f - ctx.light_vertex_share(path, ray.origin + ray.dir * es.t, Vec3(0.f), Vec3(0.f),
+                                           es.light, es.light_point);
   const int group = ctx.scene.light_group[es.light];
   if (depth == 0 && ctx.options.record) {
     ctx.add_as(FirstEvent::Volume, false, group, es.value);
@@ -54,15 +48,21 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const std::vector<Majorant
     const float f = phase.eval(wo, wi);
     return std::tuple{Rgb(f), Rgb{}, f};
   };
-  const float pdf_a = equiangular ? analytic_scatter_pdf(scene.media, spans, ray, t) : 0.f;
+  // Delta lights: the complement of sample_equiangular's weight at this t
+  // (its header says why any such partition of unity is unbiased); where
+  // equiangular cannot pick t this strategy takes it all, also when the
+  // proxy has underflowed (power_heuristic(0, 0) would drop it). Times the
+  // path tracer's share against light-vertex connections (light_vertex.h).
   auto delta_weight = [&](size_t li, const Vec3& light_point) {
-    const float w =
-        equiangular ? power_heuristic(pdf_a, equiangular_pdf(scene.lights[li], ray, spans, t,
-                                                             ctx.options.equiangular_in_cone))
-                    : 1.f;
+    float w = 1.f;
+    if (equiangular) {
+      const float pdf_e =
+          equiangular_pdf(scene.lights[li], ray, spans, t, ctx.options.equiangular_in_cone);
+      if (pdf_e > 0.f)
+        w = power_heuristic(distance_sampling_proxy_pdf(scene.media, spans, ray, t), pdf_e);
+    }
     return w * (1.f - ctx.light_vertex_share(path, p, Vec3(0.f), Vec3(0.f), li, light_point));
   };
-
   const DirectSample ds =
       sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
                           ctx.result.rays, eval_phase, delta_weight);
@@ -139,7 +139,7 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
     ctx.result.camera_transmittance =
         estimate_transmittance(scene.media, path.ray, tmax, ctx.sampler).average();
   const bool equiangular =
-      options.equiangular && all_analytic(spans) && ctx.have_lights() && depth < options.max_depth;
+      options.equiangular && !spans.empty() && ctx.have_lights() && depth < options.max_depth;
   if (equiangular) add_equiangular(ctx, spans, depth, path);
 
   const FreeFlight flight = sample_free_flight_with_emission(ctx, spans, tmax, depth, path);

@@ -12,10 +12,10 @@ enum class MediumEvent {
 };
 
 // Samples the media along path.ray up to tmax (the surface hit, or
-// infinity): equiangular single scattering toward point lights where the
-// media allow it, delta tracking to the next real collision with volume
-// emission on the way, and at a scattering event next-event estimation and
-// a Henyey-Greenstein sample for the next ray.
+// infinity): equiangular single scattering toward point lights, delta
+// tracking to the next real collision with volume emission on the way, and
+// at a scattering event next-event estimation and a Henyey-Greenstein sample
+// for the next ray.
 MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& path);
 
 }  // namespace vesper

@@ -25,7 +25,7 @@ struct PathTracerOptions {
   int max_depth = 8;  // scattering events after the camera vertex
   bool want_aovs = false;
   int rr_start_depth = 3;  // Russian roulette from this many scattering events on
-  // Equiangular sampling toward point/spot lights in homogeneous media (MIS).
+  // Equiangular sampling toward point/spot lights in all media (MIS).
   bool equiangular = true;
   // ... aimed only at the part of a ray inside a spot light's cone.
   bool equiangular_in_cone = true;

@@ -56,36 +56,79 @@ FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantS
 }
 
 namespace {
-// Calls f(coefficients, t0, t1) for the parts of the analytic spans before t.
+// Calls f(span) for the spans before t, the last one clipped at t.
 template <typename F>
-void for_spans_before(const MediaSet& media, const std::vector<MajorantSpan>& spans, const Ray& ray,
-                      float t, F&& f) {
-  for (const MajorantSpan& s : spans) {
+void for_spans_before(const std::vector<MajorantSpan>& spans, float t, F&& f) {
+  for (MajorantSpan s : spans) {
     if (s.t0 >= t) break;
-    const float t1 = std::min(s.t1, t);
-    const float mid = std::isinf(t1) ? s.t0 + 1.f : 0.5f * (s.t0 + t1);
-    f(media.coefficients(ray.origin + ray.dir * mid, ray.time), s.t0, t1);
+    s.t1 = std::min(s.t1, t);
+    f(s);
   }
+}
+
+// The coefficients of an analytic span (constant along it): at its middle.
+MediumCoefficients analytic_coefficients(const MediaSet& media, const MajorantSpan& s,
+                                         const Ray& ray) {
+  const float mid = std::isinf(s.t1) ? s.t0 + 1.f : 0.5f * (s.t0 + s.t1);
+  return media.coefficients(ray.origin + ray.dir * mid, ray.time);
+}
+
+// Ratio tracking across one span, multiplying tr by each null collision's
+// weight. Returns false when Russian roulette ended it (tr is then 0).
+bool ratio_track_span(const MediaSet& media, const MajorantSpan& span, const Ray& ray,
+                      Sampler& sampler, Rgb& tr) {
+  return for_each_tentative_collision(
+      media, span, ray, sampler, [&](float, const Vec3&, const MediumCoefficients& c) {
+        tr *= (Rgb(span.sigma_maj) - c.sigma_a - c.sigma_s) / span.sigma_maj;
+        // Russian roulette once the estimate is small (unbiased).
+        if (tr.max_component() < 0.1f) {
+          if (sampler.next1() < 0.5f) return false;
+          tr *= 2.f;
+        }
+        return true;
+      });
 }
 }  // namespace
 
-Rgb analytic_transmittance(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                           const Ray& ray, float t) {
-  Rgb optical;
-  for_spans_before(media, spans, ray, t, [&](const MediumCoefficients& c, float a, float b) {
-    optical += (c.sigma_a + c.sigma_s) * (b - a);
+Rgb estimate_transmittance_to(const MediaSet& media, const std::vector<MajorantSpan>& spans,
+                              const Ray& ray, float t, Sampler& sampler) {
+  // The analytic spans' optical depths are summed and exponentiated once
+  // (not span by span): homogeneous media then give the very bits the
+  // equiangular estimate had before it ran in grids.
+  Rgb optical, ratio(1.f);
+  bool ended = false;
+  for_spans_before(spans, t, [&](const MajorantSpan& s) {
+    if (ended) return;
+    if (s.analytic) {
+      const MediumCoefficients c = analytic_coefficients(media, s, ray);
+      optical += (c.sigma_a + c.sigma_s) * (s.t1 - s.t0);
+    } else {
+      ended = !ratio_track_span(media, s, ray, sampler, ratio);
+    }
   });
-  return exp_rgb(optical * -1.f);
+  if (ended) return Rgb{};
+  return ratio * exp_rgb(optical * -1.f);
 }
 
-float analytic_scatter_pdf(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                           const Ray& ray, float t) {
+float distance_sampling_proxy_survival(const MediaSet& media,
+                                       const std::vector<MajorantSpan>& spans, const Ray& ray,
+                                       float t) {
   double optical = 0;
-  for_spans_before(media, spans, ray, t, [&](const MediumCoefficients& c, float a, float b) {
-    optical += double((c.sigma_a + c.sigma_s).average()) * (b - a);
+  for_spans_before(spans, t, [&](const MajorantSpan& s) {
+    float sigma_t = s.sigma_maj;
+    if (s.analytic) {
+      const MediumCoefficients c = analytic_coefficients(media, s, ray);
+      sigma_t = (c.sigma_a + c.sigma_s).average();
+    }
+    optical += double(sigma_t) * (s.t1 - s.t0);
   });
+  return float(std::exp(-optical));
+}
+
+float distance_sampling_proxy_pdf(const MediaSet& media, const std::vector<MajorantSpan>& spans,
+                                  const Ray& ray, float t) {
   const MediumCoefficients here = media.coefficients(ray.origin + ray.dir * t, ray.time);
-  return float(here.sigma_s.average() * std::exp(-optical));
+  return here.sigma_s.average() * distance_sampling_proxy_survival(media, spans, ray, t);
 }
 
 Rgb estimate_transmittance(const MediaSet& media, const Ray& ray, float tmax, Sampler& sampler) {
@@ -98,18 +141,8 @@ Rgb estimate_transmittance(const MediaSet& media, const Ray& ray, float tmax, Sa
       const MediumCoefficients c =
           media.coefficients(ray.origin + ray.dir * (0.5f * (span.t0 + span.t1)), ray.time);
       tr *= exp_rgb((c.sigma_a + c.sigma_s) * -(span.t1 - span.t0));
-    } else {
-      const bool went_on = for_each_tentative_collision(
-          media, span, ray, sampler, [&](float, const Vec3&, const MediumCoefficients& c) {
-            tr *= (Rgb(span.sigma_maj) - c.sigma_a - c.sigma_s) / span.sigma_maj;
-            // Russian roulette once the estimate is small (unbiased).
-            if (tr.max_component() < 0.1f) {
-              if (sampler.next1() < 0.5f) return false;
-              tr *= 2.f;
-            }
-            return true;
-          });
-      if (!went_on) return Rgb{};
+    } else if (!ratio_track_span(media, span, ray, sampler, tr)) {
+      return Rgb{};
     }
     if (tr.is_black()) return tr;
   }

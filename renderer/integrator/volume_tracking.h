@@ -49,14 +49,28 @@ FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantS
                               const Ray& ray, Sampler& sampler, Rgb& throughput,
                               std::vector<ThroughputStep>* steps = nullptr);
 
-// For rays whose spans are all analytic (homogeneous media only):
-// transmittance from the ray origin to t, and the density with which
-// sample_free_flight scatters at t (real collisions form a Poisson process
-// of rate avg(sigma_t); a collision scatters with probability avg(sigma_s) / avg(sigma_t)).
-Rgb analytic_transmittance(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                           const Ray& ray, float t);
-float analytic_scatter_pdf(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                           const Ray& ray, float t);
+// Unbiased transmittance estimate from the ray origin to t, over `spans`
+// (media.majorant_spans of the ray): the analytic spans exactly, the others
+// by ratio tracking (the only sampler dimensions it takes). Over analytic
+// spans only, it is the exact exp(-optical depth).
+Rgb estimate_transmittance_to(const MediaSet& media, const std::vector<MajorantSpan>& spans,
+                              const Ray& ray, float t, Sampler& sampler);
+
+// A deterministic stand-in for the density (per unit t) with which
+// sample_free_flight scatters at t: avg(sigma_s(t)) * exp(-sum over the spans
+// before t of avg(sigma_t) * length (analytic) or sigma_maj * length (grid)).
+// Exact where only homogeneous media are crossed (real collisions form a
+// Poisson process of rate avg(sigma_t), each scattering with probability
+// avg(sigma_s) / avg(sigma_t)); elsewhere the true density, avg(sigma_s(t))
+// times the unknown transmittance, has no closed form. MIS weights only need
+// to be deterministic functions of t (equiangular_sampling.h), so this serves.
+float distance_sampling_proxy_pdf(const MediaSet& media, const std::vector<MajorantSpan>& spans,
+                                  const Ray& ray, float t);
+// Its exp(-...) factor alone: the stand-in for the probability that
+// sample_free_flight passes t without a real collision (a surface at t).
+float distance_sampling_proxy_survival(const MediaSet& media,
+                                       const std::vector<MajorantSpan>& spans, const Ray& ray,
+                                       float t);
 
 // Unbiased transmittance estimate along ray over [0, tmax].
 Rgb estimate_transmittance(const MediaSet& media, const Ray& ray, float tmax, Sampler& sampler);

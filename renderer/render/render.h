@@ -57,7 +57,9 @@ struct RenderOptions {
   // beauty's variance.R/G/B): 192 more bytes per pixel for each, while
   // rendering. For the regression batch's per-layer noise model.
   bool layer_variance = false;
-  bool equiangular = true;  // equiangular sampling toward point/spot lights in homogeneous media
+  // Equiangular sampling toward point/spot lights in all media (MIS with
+  // distance sampling); off only to measure it (bench, tests).
+  bool equiangular = true;
   bool equiangular_in_cone = true;  // ... only over the part of a ray inside a spot light's cone
   // Connections to a vertex traced from point/spot lights (media only);
   // unset: on where every medium is homogeneous (render.cpp says why).

@@ -4,7 +4,7 @@
 
 #include <boost/math/special_functions/gamma.hpp>
 
-#include "render_stats.h"
+#include "equiangular_stats.h"
 #include "renderer/integrator/equiangular.h"
 #include "renderer/sampling/sampler.h"
 #include "scene_fixtures.h"
@@ -80,52 +80,6 @@ SceneDescription fog_shaft_scene(double light_radius = 0) {
   m.name = "fog";
   m.medium = fog;
   return d;
-}
-
-// Renders the scene with equiangular sampling on and off in batches; the
-// tiles' means must agree (t-test, alpha 0.01, Sidak over the tiles).
-void expect_on_and_off_agree(const Scene& scene) {
-  const int batches = 10;
-  auto stats_with = [&](bool equiangular, uint64_t seed0) {
-    TileStats st;
-    const int w = scene.film.width, h = scene.film.height, tile = 6;
-    st.tiles_x = w / tile;
-    st.tiles_y = h / tile;
-    st.batches = batches;
-    std::vector<std::vector<double>> per(size_t(st.tiles_x * st.tiles_y));
-    for (int b = 0; b < batches; ++b) {
-      RenderOptions o;
-      o.seed = seed0 + uint64_t(b);
-      o.equiangular = equiangular;
-      const RenderResult r = render(scene, o);
-      std::vector<double> sum(per.size(), 0.0);
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-          sum[size_t((y / tile) * st.tiles_x + x / tile)] += pixel_luminance(r.image, x, y);
-      for (size_t t = 0; t < per.size(); ++t) per[t].push_back(sum[t] / (tile * tile));
-    }
-    for (auto& v : per) {
-      double m = 0, var = 0;
-      for (double x : v) m += x;
-      m /= batches;
-      for (double x : v) var += (x - m) * (x - m);
-      st.mean.push_back(m);
-      st.se.push_back(std::sqrt(var / (batches - 1) / batches));
-    }
-    return st;
-  };
-  const TileStats on = stats_with(true, 100), off = stats_with(false, 500);
-  const double crit = sidak_t_critical(0.01, int(on.mean.size()), batches - 1);
-  double se_on = 0, se_off = 0;
-  for (size_t t = 0; t < on.mean.size(); ++t) {
-    const double se = std::sqrt(on.se[t] * on.se[t] + off.se[t] * off.se[t]);
-    EXPECT_LT(std::abs(on.mean[t] - off.mean[t]) / std::max(se, 1e-9), crit)
-        << "tile " << t << ": " << on.mean[t] << " vs " << off.mean[t];
-    se_on += on.se[t];
-    se_off += off.se[t];
-  }
-  std::printf("mean tile standard error: equiangular on %.5f, off %.5f\n", se_on / on.se.size(),
-              se_off / off.se.size());
 }
 
 TEST(Equiangular, OnAndOffRenderTheSameExpectedImage) {
