@@ -308,13 +308,14 @@ std::optional<FrameStatus> JobStore::frame(int64_t job, int frame) const {
 }
 
 std::string JobStore::record_frame_output(int64_t job, int frame, const std::string& blob,
-                                          double now) {
+                                          double now, const std::optional<FrameNoise>& noise) {
   sql::Transaction tx(impl_->db);
   const auto f = impl_->frames(job, frame, frame);
   if (f.empty() || !f[0].complete())
     throw StoreError("job " + std::to_string(job) + " frame " + std::to_string(frame) +
                      " is not finished; its output cannot be recorded");
   const std::string recorded = impl_->record_output(job, frame, blob, now);
+  if (noise) impl_->record_noise(job, frame, *noise);  // changes nothing if recorded before
   tx.commit();
   return recorded;
 }

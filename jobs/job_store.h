@@ -123,8 +123,12 @@ class JobStore {
   // Records `blob` as the output of a finished frame, once: when an output is
   // recorded already (another merge won the race) it is kept. Returns the
   // recorded blob. A frame of one task gets its output from complete(), in
-  // the same transaction. Throws StoreError if the frame is not finished.
-  std::string record_frame_output(int64_t job, int frame, const std::string& blob, double now);
+  // the same transaction. With `noise`, the output's noise is recorded in
+  // that transaction too (as record_frame_noise): readers on another
+  // connection never see the frame ready without it. Throws StoreError if
+  // the frame is not finished.
+  std::string record_frame_output(int64_t job, int frame, const std::string& blob, double now,
+                                  const std::optional<FrameNoise>& noise = std::nullopt);
   // (job, frame) of every finished frame of several tasks that has no output
   // recorded yet: the frames that wait for a merge.
   std::vector<std::pair<int64_t, int>> frames_awaiting_merge() const;

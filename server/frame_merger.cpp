@@ -159,12 +159,10 @@ FrameMerger::Output FrameMerger::merge(int64_t job, int frame,
   const std::string hash = sha256_hex(bytes);
   blobs_.put(hash, bytes);
   const double put_before = BlobStore::now();
-  // The frame is never seen ready without its noise: both under one lock.
-  const std::string recorded = store_.with([&](JobStore& s) {
-    const std::string r = s.record_frame_output(job, frame, hash, clock_.now());
-    s.record_frame_noise(job, frame, noise);  // changes nothing if another merge recorded first
-    return r;
-  });
+  // The frame is never seen ready without its noise: both in one transaction
+  // (the API reads through a second connection, server/locked_store.h).
+  const std::string recorded = store_.with(
+      [&](JobStore& s) { return s.record_frame_output(job, frame, hash, clock_.now(), noise); });
   blobs_.claim({hash}, put_before);  // the frame references it now
   spdlog::info("{}: merged into {} in {:.2f} s", frame_name(job, frame), recorded,
                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());

@@ -168,6 +168,25 @@ TEST_F(BudgetStoreTest, ResultReuseDistinguishesNoiseTargetsMinSppAndTimeLimits)
   EXPECT_EQ(s.frame(same, 1)->output, "noisy-0.02");
 }
 
+// A merged frame's output and its noise are one commit: a second connection
+// (the API's reader) never sees the output without the noise.
+TEST_F(BudgetStoreTest, AMergedOutputAndItsNoiseAreRecordedTogether) {
+  JobStore s(db());
+  const int64_t j = s.submit(spec(64, 32, budget(0.02)), 0);
+  for (int i = 0; i < 2; ++i) {
+    const auto l = s.lease("w", 1);
+    ASSERT_TRUE(l);
+    ASSERT_TRUE(s.complete(l->lease_id, "part-" + std::to_string(i), 2));
+  }
+  JobStore reader(db());
+  EXPECT_EQ(reader.frame(j, 1)->output, "");
+  const FrameNoise noise{0.0187, 41.25, "noise_target"};
+  EXPECT_EQ(s.record_frame_output(j, 1, "merged", 3, noise), "merged");
+  EXPECT_EQ(reader.frame(j, 1)->output, "merged");
+  EXPECT_EQ(reader.frame(j, 1)->noise, noise);
+  EXPECT_TRUE(s.outputs_without_noise().empty());
+}
+
 TEST_F(BudgetStoreTest, AFramesNoiseIsRecordedOnceAndTravelsWithAReusedOutput) {
   JobStore s(db());
   const int64_t j = s.submit(spec(64, 0, budget(0.02)), 0);
