@@ -214,7 +214,7 @@ int main(int argc, char** argv) {
     const std::filesystem::path lantern = write_lantern_scene();
     run_scene("thin cloud lantern (generated cloud VDB, point light inside)", lantern,
               {{"default", true, true, true, std::nullopt},
-               lv_on,
+               no_lv,
                {"equiangular off", true, false, true, std::nullopt},
                start},
               {}, quick);

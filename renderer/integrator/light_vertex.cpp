@@ -101,6 +101,18 @@ bool has_connectable_lights(const Scene& scene) {
   return connectable_power(scene.light_sampler) > 0.f;
 }
 
+bool light_vertices_pay_off(const Scene& scene) {
+  const auto& media = scene.media.media();
+  if (std::all_of(media.begin(), media.end(),
+                  [](const Medium& m) { return std::holds_alternative<HomogeneousMedium>(m); }))
+    return true;
+  const LightSampler& ls = scene.light_sampler;
+  for (size_t i = 0; i < ls.bounds().size(); ++i)
+    if (connectable(ls, i) && !scene.media.coefficients(*ls.bounds()[i]->aim()).sigma_s.is_black())
+      return true;
+  return false;
+}
+
 std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sampler& sampler,
                                               uint32_t& rays) {
   const LightSampler& ls = scene.light_sampler;

@@ -48,9 +48,9 @@ void record_first_hit(PathContext& ctx, const SurfaceHit& hit, const Ray& ray) {
   ctx.result.normal = dot(hit.n, ray.dir) < 0.f ? hit.n : -hit.n;
 }
 
-// Next-event estimation at a surface vertex.
-// Delta lights share the path x -> hit -> light with light-vertex
-// connections made from x (light_vertex.h).
+// Next-event estimation at a surface vertex. Delta and sphere lights share
+// the path x -> hit -> light with light-vertex connections made from the
+// vertex x before (light_vertex.h).
 template <bool kMedia>
 LightSampler::Sums add_direct_light(PathContext& ctx, const SurfaceHit& hit, const ShadingPoint& at,
                                     const Bsdf& bsdf, const Frame& frame, const Vec3& wo, int depth,
@@ -88,7 +88,15 @@ void connect_from_surface(PathContext& ctx, const SurfaceHit& hit, const Bsdf& b
         const Vec3 wi = frame.to_local(wi_world);
         return std::tuple{bsdf_eval(bsdf, wo, wi) * std::abs(wi.z), bsdf_pdf(bsdf, wo, wi)};
       });
-  if (!value.is_black()) ctx.add(throughput * value, depth + 2, ctx.scene.light_group[lv->light]);
+  if (value.is_black()) return;
+  // At the first surface its own lobe split, as next-event estimation's.
+  Rgb fraction;
+  if (depth == 0 && ctx.options.record) {
+    const Vec3 wi = frame.to_local(normalize(lv->p - hit.p));
+    fraction = safe_ratio(bsdf_eval_diffuse(bsdf, wo, wi), bsdf_eval(bsdf, wo, wi));
+  }
+  ctx.add(throughput * value, depth + 2, ctx.scene.light_group[lv->light], false,
+          depth == 0 ? &fraction : nullptr);
 }
 
 // Light sampling and a BSDF sample for the next ray at a surface vertex;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <optional>
 
+#include "renderer/integrator/light_vertex.h"
 #include "renderer/output/metadata_text.h"
 #include "renderer/output/range_metadata.h"
 #include "renderer/render/channel_layout.h"
@@ -27,17 +28,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Light-vertex connections pay for themselves in homogeneous fog (fog-shafts,
-// point-fog, the night room) but not in the smoke VDB, where the shadow ray
-// and the weights' majorant walks cost more than the noise they remove
-// (bench/README.md, vesper_volume_bench): by default they run only where
-// every medium is homogeneous.
-bool only_homogeneous_media(const MediaSet& media) {
-  for (const Medium& m : media.media())
-    if (!std::holds_alternative<HomogeneousMedium>(m)) return false;
-  return true;
-}
-
 PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& options,
                                       const ChannelLayout& layout) {
   PathTracerOptions pt;
@@ -45,7 +35,7 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   pt.want_aovs = layout.albedo >= 0 || layout.normal >= 0 || layout.depth >= 0;
   pt.equiangular = options.equiangular;
   pt.equiangular_in_cone = options.equiangular_in_cone;
-  pt.light_vertices = options.light_vertices.value_or(only_homogeneous_media(scene.media));
+  pt.light_vertices = options.light_vertices.value_or(light_vertices_pay_off(scene));
   pt.want_camera_transmittance = layout.need_transmittance;
   const std::optional<double> clamp = options.clamp ? options.clamp : scene.render.clamp;
   pt.indirect_clamp = float(clamp.value_or(0.0));
