@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "equiangular_stats.h"
+#include "renderer/integrator/light_vertex.h"
 #include "scene_fixtures.h"
 #include "test_grids.h"
 
@@ -71,6 +72,40 @@ TEST(EquiangularGrid, PointLightInsideAGridMediumIsLessNoisy) {
   add_light(d, PointLightDesc{{0.15, 0.1, 0.1}, Rgb(1.5f)});
   const OnOffNoise noise = expect_on_and_off_agree(build_scene(d));
   EXPECT_LT(noise.se_on, 0.7 * noise.se_off);
+}
+
+// Light-vertex connections in a grid medium: their MIS weights use the same
+// deterministic proxies, so the image must not change (t-test against the
+// connections off).
+TEST(LightVertexGrid, ConnectionsInAGridMediumAreUnbiased) {
+  SceneDescription d = grid_box_scene(4);
+  add_light(d, PointLightDesc{{0.15, 0.1, 0.1}, Rgb(1.5f)});
+  add_light(d,
+            SpotLightDesc{{0.1, 1.0, 0.2}, normalize(Vec3d(0, -1, -0.1)), Rgb(4.f), 25, 20, 0.1});
+  RenderOptions on, off;
+  on.light_vertices = true;
+  off.light_vertices = false;
+  expect_estimators_agree(build_scene(d), on, off);
+}
+
+// The default: connections where every medium is homogeneous or a light sits
+// in a scattering medium (light_vertex.h says what was measured).
+TEST(LightVertexGrid, DefaultFollowsWhereTheLightsSit) {
+  SceneDescription inside = grid_box_scene(4);
+  add_light(inside, PointLightDesc{{0.15, 0.1, 0.1}, Rgb(1.5f)});
+  EXPECT_TRUE(light_vertices_pay_off(build_scene(inside)));
+  SceneDescription outside = grid_box_scene(4);
+  add_light(outside, PointLightDesc{{0.15, 2.0, 0.1}, Rgb(1.5f)});
+  EXPECT_FALSE(light_vertices_pay_off(build_scene(outside)));
+  SceneDescription fog = empty_scene(8, 8, 4, 4);
+  add_light(fog, PointLightDesc{{0, 5, 0}, Rgb(1.f)});
+  HomogeneousMediumDesc h;
+  h.sigma_s = Rgb(0.1f);
+  h.bounds = BoxDesc{{-1, -1, -1}, {1, 1, 1}};
+  MediumDesc& m = fog.media.emplace_back();
+  m.name = "fog";
+  m.medium = h;
+  EXPECT_TRUE(light_vertices_pay_off(build_scene(fog)));
 }
 
 }  // namespace

@@ -22,7 +22,8 @@ SceneDescription shaft_and_pool_scene(int max_depth, double radius = 0) {
   add_quad(d, {-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, grey);
   add_quad(d, {-3, 0, -2}, {6, 0, 0}, {0, 3, 0}, shiny);
   add_quad(d, {-0.3, 1.6, -0.3}, {0.6, 0, 0}, {0, 0, 0.6}, grey);  // occluder in the shaft
-  add_light(d, SpotLightDesc{{0.1, 2.6, 0.0}, normalize(Vec3d(0, -1, 0.1)), Rgb(30.f), 25.0, 20.0, radius});
+  add_light(d, SpotLightDesc{
+                   {0.1, 2.6, 0.0}, normalize(Vec3d(0, -1, 0.1)), Rgb(30.f), 25.0, 20.0, radius});
   add_light(d, PointLightDesc{{-1.2, 0.6, 0.8}, Rgb(0.3f, 0.2f, 0.1f), radius});
   HomogeneousMediumDesc fog;
   fog.sigma_s = Rgb(0.35f, 0.3f, 0.25f);
