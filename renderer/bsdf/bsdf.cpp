@@ -38,6 +38,12 @@ bool bsdf_is_delta(const Bsdf& bsdf) {
   return std::visit([](const auto& b) { return bsdf_detail::is_delta(b); }, bsdf);
 }
 
+bool bsdf_transmits(const Bsdf& bsdf) { return std::holds_alternative<DielectricBsdf>(bsdf); }
+
+Vec3 bsdf_shading_normal(const Bsdf& bsdf, const Vec3& n, const Vec3& wo_world) {
+  return (!bsdf_transmits(bsdf) && dot(n, wo_world) < 0.f) ? -n : n;
+}
+
 Rgb bsdf_albedo(const Bsdf& bsdf) {
   return std::visit([](const auto& b) { return bsdf_detail::albedo(b); }, bsdf);
 }

@@ -64,6 +64,12 @@ std::optional<BsdfSample> bsdf_sample(const Bsdf& bsdf, const Vec3& wo, float uc
 Rgb bsdf_eval_diffuse(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi);
 // True when every lobe is a delta lobe (no light sampling is useful).
 bool bsdf_is_delta(const Bsdf& bsdf);
+// True when the BSDF transmits (dielectric): light may reach it from either side.
+bool bsdf_transmits(const Bsdf& bsdf);
+// The normal a surface vertex shades with, seen from wo_world: opaque BSDFs
+// are two-sided (the normal turned toward wo_world); a dielectric keeps the
+// geometric orientation (outside = the normal's side).
+Vec3 bsdf_shading_normal(const Bsdf& bsdf, const Vec3& n, const Vec3& wo_world);
 // Directional-hemispherical reflectance estimate for the `albedo` AOV.
 Rgb bsdf_albedo(const Bsdf& bsdf);
 

@@ -97,11 +97,8 @@ Emission sample_emission(const LightBounds& b, Vec2 u_dir, Vec2 u_disk) {
 
 }  // namespace
 
-bool has_connectable_lights(const Scene& scene) {
-  return connectable_power(scene.light_sampler) > 0.f;
-}
-
 bool light_vertices_pay_off(const Scene& scene) {
+  if (scene.media.empty() || !(connectable_power(scene.light_sampler) > 0.f)) return false;
   const auto& media = scene.media.media();
   if (std::all_of(media.begin(), media.end(),
                   [](const Medium& m) { return std::holds_alternative<HomogeneousMedium>(m); }))
@@ -176,22 +173,27 @@ float light_vertex_weight(const Scene& scene, const Vec3& x, float pdf_x, const 
   const float r2 = length_squared(from_light), d2 = length_squared(from_x);
   if (!(r2 > 0.f) || !(d2 > 0.f)) return 0.f;
   const Vec3 w_light = from_light / std::sqrt(r2), w_x = from_x / std::sqrt(d2);
+  // The light vertex cannot be at y: outside the cone, or (sphere lights)
+  // from a point facing away from y. Checked before the densities, which
+  // walk the media twice and weigh every light.
+  if (b.cos_cone > -1.f && !(dot(w_light, b.axis) > b.cos_cone)) return 0.f;
+  std::optional<SphereCone> cone;
+  if (b.sphere) {
+    const Vec3 centre = *b.aim();
+    if (!(dot(s - centre, w_light) > 0.f)) return 0.f;
+    cone = SphereCone::toward(y, centre, sphere_radius(b));
+    if (!cone) return 0.f;
+  }
   const bool surface = n_y.x != 0.f || n_y.y != 0.f || n_y.z != 0.f;
   const float pmf_light = ls.powers()[light] / connectable_power(ls);
   float p_light =
       light_side_density(b, pmf_light, distance_density(scene.media, s, y, time, surface));
   float p_path = pdf_x * distance_density(scene.media, x, y, time, surface) / d2 *
                  ls.pmf(ShadingPoint{y, n_y_shading}, light);
-  if (b.cos_cone > -1.f && !(dot(w_light, b.axis) > b.cos_cone)) return 0.f;  // not emitted
-  if (b.sphere) {
-    const Vec3 centre = *b.aim();
-    if (!(dot(s - centre, w_light) > 0.f)) return 0.f;  // a point facing away from y
-    const std::optional<SphereCone> cone = SphereCone::toward(y, centre, sphere_radius(b));
-    if (!cone) return 0.f;
+  if (cone)
     p_path *= cone->pdf();
-  } else {
+  else
     p_light /= r2;
-  }
   if (surface) {
     p_light *= std::abs(dot(n_y, w_light));
     p_path *= std::abs(dot(n_y, w_x));

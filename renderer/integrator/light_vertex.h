@@ -18,10 +18,11 @@
 // are deterministic functions of (x, y, light), evaluated by the same code
 // on both sides, so the weights are a partition of unity and the sum is
 // unbiased. Point and spot lights take part, with or without a radius: a
-// sphere light's vertex leaves a point on the sphere (uniform by area) in a
-// cosine-distributed direction, and the weights compare densities of the
-// pair (light point, y), where next-event estimation picks the light point
-// by solid angle (sphere_cone.h).
+// sphere light's ray takes a direction in its cone as a point light's does,
+// then leaves a point of the hemisphere facing that direction (uniform in
+// projected area), and the weights compare densities of the pair (light
+// point, y), where next-event estimation picks the light point by solid
+// angle (sphere_cone.h).
 #include <optional>
 
 #include "renderer/core/ray.h"
@@ -42,11 +43,9 @@ struct LightVertex {
   bool on_surface() const { return n.x != 0.f || n.y != 0.f || n.z != 0.f; }
 };
 
-// Whether the scene has lights that take part (point and spot lights).
-bool has_connectable_lights(const Scene& scene);
-
 // The default (RenderOptions::light_vertices unset): where the connections
-// paid for themselves in vesper_volume_bench. On where every medium is
+// paid for themselves in vesper_volume_bench. Off without media or without
+// a point or spot light. On where every medium is
 // homogeneous (fog-shafts, point-fog, the night room) or a light that takes
 // part sits inside a scattering medium (a lantern in a cloud VDB: 5.9x at
 // equal error); off otherwise (the smoke VDB, its light outside the voxels:

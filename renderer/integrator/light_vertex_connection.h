@@ -30,12 +30,13 @@ Rgb connect_light_vertex(const Scene& scene, const LightVertex& lv, const Vec3& 
   Vec3 n_y_shading{};
   if (lv.on_surface()) {
     const Bsdf& bsdf = scene.materials[lv.material];
-    const bool transmissive = std::holds_alternative<DielectricBsdf>(bsdf);
-    const Vec3 n = (!transmissive && dot(lv.n, -dir) < 0.f) ? -lv.n : lv.n;
+    // Shaded as the path tracer would at y, seen from x (scatter_at_surface):
+    // its light choice there is part of the MIS weight.
+    const Vec3 n = bsdf_shading_normal(bsdf, lv.n, -dir);
     const Frame frame = Frame::from_normal(n);
     f_y = bsdf_eval(bsdf, frame.to_local(-dir), frame.to_local(to_light));
     cos_y = std::abs(dot(lv.n, dir));
-    n_y_shading = transmissive ? Vec3(0.f) : n;
+    n_y_shading = bsdf_transmits(bsdf) ? Vec3(0.f) : n;
   } else {
     f_y = Rgb(HgPhase{lv.g}.eval(-dir, to_light));
   }

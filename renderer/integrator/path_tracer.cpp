@@ -17,8 +17,6 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-bool is_transmissive(const Bsdf& bsdf) { return std::holds_alternative<DielectricBsdf>(bsdf); }
-
 // Radiance from light li reached by path.ray `distance` away (infinity: the
 // ray escaped), MIS-weighted against the BSDF or phase sample that made the
 // ray.
@@ -104,11 +102,9 @@ void connect_from_surface(PathContext& ctx, const SurfaceHit& hit, const Bsdf& b
 template <bool kMedia>
 bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, PathState& path) {
   const Bsdf& bsdf = ctx.scene.materials[hit.material];
-  // Opaque BSDFs are two-sided: shade with the normal facing the viewer.
-  // Dielectrics keep the geometric orientation (outside = normal side).
   const Vec3 wo_world = -path.ray.dir;
-  const bool transmissive = is_transmissive(bsdf);
-  const Vec3 n_shading = (!transmissive && dot(hit.n, wo_world) < 0.f) ? -hit.n : hit.n;
+  const bool transmissive = bsdf_transmits(bsdf);
+  const Vec3 n_shading = bsdf_shading_normal(bsdf, hit.n, wo_world);
   const Frame frame = Frame::from_normal(n_shading);
   const Vec3 wo = frame.to_local(wo_world);
   if (depth == 0 && ctx.options.want_aovs) ctx.result.albedo = bsdf_albedo(bsdf);
@@ -167,8 +163,7 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
   PathResult result;
   if (options.record) options.record->reset();
   PathContext ctx{scene, sampler, options, result, Rgb{}, Rgb{}};
-  if constexpr (kMedia)
-    ctx.light_vertices = options.light_vertices && has_connectable_lights(scene);
+  if constexpr (kMedia) ctx.light_vertices = options.light_vertices;
   PathState path{camera_ray};
   for (int depth = 0;; ++depth) {
     const std::optional<SurfaceHit> hit = scene.accel->intersect(path.ray);

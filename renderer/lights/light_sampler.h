@@ -79,7 +79,7 @@ class LightSampler {
     return dist_.sample_discrete(u, pmf, u_remapped);
   }
   float pmf(size_t light_index) const { return dist_.discrete_pmf(light_index); }
-  // What the lights are, for strategies that aim at them (light_guide.h).
+  // What the lights are, for strategies that start at them (light_vertex.h).
   const std::vector<float>& powers() const { return power_; }
   const std::vector<std::optional<LightBounds>>& bounds() const { return bounds_; }
 

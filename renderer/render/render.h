@@ -62,7 +62,7 @@ struct RenderOptions {
   bool equiangular = true;
   bool equiangular_in_cone = true;  // ... only over the part of a ray inside a spot light's cone
   // Connections to a vertex traced from point/spot lights (media only);
-  // unset: on where every medium is homogeneous (render.cpp says why).
+  // unset: where they pay off (light_vertices_pay_off, light_vertex.h).
   std::optional<bool> light_vertices;
   // Ranks per Cryptomatte type (Aov::Cryptomatte): (depth + 1) / 2 RGBA layers
   // each, in [1, kMaxCryptoDepth] (std::invalid_argument otherwise).
