@@ -5,6 +5,7 @@
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "renderer/render/render.h"
@@ -21,8 +22,10 @@ inline double pixel_luminance(const LayeredImage& img, int x, int y) {
   return 0.2126 * img.at(x, y, 0) + 0.7152 * img.at(x, y, 1) + 0.0722 * img.at(x, y, 2);
 }
 
-inline TileStats tile_stats(const Scene& scene, int batches, int spp, int tile,
-                            uint64_t seed0 = 1000) {
+// `options`: the estimator to render with (its spp and seed are set here;
+// spp unset: the scene's).
+inline TileStats tile_stats(const Scene& scene, int batches, std::optional<int> spp, int tile,
+                            uint64_t seed0 = 1000, RenderOptions options = {}) {
   const int w = scene.film.width, h = scene.film.height;
   TileStats st;
   st.tiles_x = (w + tile - 1) / tile;
@@ -31,10 +34,9 @@ inline TileStats tile_stats(const Scene& scene, int batches, int spp, int tile,
   const size_t n = size_t(st.tiles_x * st.tiles_y);
   std::vector<std::vector<double>> per_batch(n);
   for (int b = 0; b < batches; ++b) {
-    RenderOptions o;
-    o.spp = spp;
-    o.seed = seed0 + uint64_t(b);
-    const RenderResult r = render(scene, o);
+    options.spp = spp;
+    options.seed = seed0 + uint64_t(b);
+    const RenderResult r = render(scene, options);
     std::vector<double> sum(n, 0.0), count(n, 0.0);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
