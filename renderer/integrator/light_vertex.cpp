@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "renderer/integrator/equiangular_sampling.h"
 #include "renderer/integrator/volume_tracking.h"
 #include "renderer/lights/sphere_cone.h"
 #include "renderer/math/constants.h"
@@ -64,6 +65,19 @@ float distance_density(const MediaSet& media, const Vec3& from, const Vec3& to, 
   media.majorant_spans(ray, dist, spans);
   if (to_surface) return distance_sampling_proxy_survival(media, spans, ray, dist);
   return distance_sampling_proxy_pdf(media, spans, ray, dist);
+}
+
+// The density (per unit distance, light choice included) with which
+// equiangular sampling on the ray from x through y picks y, over the media
+// along the whole ray (light_vertex.h says why not up to a surface).
+float equiangular_density(const Scene& scene, const Vec3& x, const Vec3& w_x, float dist,
+                          size_t light, float time, bool clip_to_cone) {
+  const Ray ray{x, w_x, std::numeric_limits<float>::infinity(), time};
+  auto& spans = scratch_spans();
+  scene.media.majorant_spans(ray, ray.tmax, spans);
+  if (spans.empty()) return 0.f;
+  return equiangular_pdf(scene.lights[light], ray, spans, dist, clip_to_cone) *
+         scene.light_sampler.pmf(light);
 }
 
 struct Emission {
@@ -164,7 +178,7 @@ std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sa
 
 float light_vertex_weight(const Scene& scene, const Vec3& x, float pdf_x, const Vec3& y,
                           const Vec3& n_y, const Vec3& n_y_shading, size_t light,
-                          const Vec3& light_point, float time) {
+                          const Vec3& light_point, float time, const PathStrategies& strategies) {
   const LightSampler& ls = scene.light_sampler;
   if (!connectable(ls, light) || !(pdf_x > 0.f)) return 0.f;
   const LightBounds& b = *ls.bounds()[light];
@@ -188,8 +202,14 @@ float light_vertex_weight(const Scene& scene, const Vec3& x, float pdf_x, const 
   const float pmf_light = ls.powers()[light] / connectable_power(ls);
   float p_light =
       light_side_density(b, pmf_light, distance_density(scene.media, s, y, time, surface));
-  float p_path = pdf_x * distance_density(scene.media, x, y, time, surface) / d2 *
+  float p_path = distance_density(scene.media, x, y, time, surface) *
                  ls.pmf(ShadingPoint{y, n_y_shading}, light);
+  if (!surface && strategies.equiangular) {
+    const float p_eq = equiangular_density(scene, x, w_x, std::sqrt(d2), light, time,
+                                           strategies.equiangular_in_cone);
+    p_path = std::hypot(p_path, p_eq);
+  }
+  p_path *= pdf_x / d2;
   if (cone)
     p_path *= cone->pdf();
   else

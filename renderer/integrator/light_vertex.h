@@ -58,13 +58,31 @@ bool light_vertices_pay_off(const Scene& scene);
 std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sampler& sampler,
                                               uint32_t& rays);
 
+// Which of the path tracer's strategies for x -> y -> light run: equiangular
+// sampling on the ray from x (PathTracerOptions::equiangular and
+// equiangular_in_cone) counts in P_path when it does.
+struct PathStrategies {
+  bool equiangular = true;
+  bool equiangular_in_cone = true;
+};
+
 // The weight u above for the path x -> y -> light_point on `light`, where x
 // made the ray toward y with direction pdf `pdf_x` (solid angle) and y has
 // the geometric normal n_y (zero in a medium). `n_y_shading` is the normal
 // the path tracer's light choice at y uses (ShadingPoint::n). 0 when the
 // light does not take part.
+//
+// In a medium P_path^2 is the sum of the squares of two densities of y:
+// distance sampling then next-event estimation, and equiangular sampling on
+// the ray from x. Near a point light both x and y can be close to it, and
+// then neither distance sampling (y's 1/r^2 to the light) nor the connection
+// (1/|x - y|^2) is bounded, but equiangular sampling toward the light is:
+// counting it here hands those paths to it (point-fog's fireflies). Its
+// density is evaluated over the media along the whole ray from x, not up to
+// the surface the ray hits: any deterministic stand-in keeps the weights a
+// partition of unity, and this one needs no extra ray.
 float light_vertex_weight(const Scene& scene, const Vec3& x, float pdf_x, const Vec3& y,
                           const Vec3& n_y, const Vec3& n_y_shading, size_t light,
-                          const Vec3& light_point, float time);
+                          const Vec3& light_point, float time, const PathStrategies& strategies);
 
 }  // namespace vesper

@@ -17,7 +17,7 @@ namespace vesper {
 template <typename Eval>
 Rgb connect_light_vertex(const Scene& scene, const LightVertex& lv, const Vec3& x,
                          const Vec3& offset_normal, float time, Sampler& sampler, uint32_t& rays,
-                         const Eval& eval) {
+                         const PathStrategies& strategies, const Eval& eval) {
   const Vec3 to_y = lv.p - x;
   const float d2 = length_squared(to_y);
   if (!(d2 > 0.f)) return {};
@@ -51,8 +51,8 @@ Rgb connect_light_vertex(const Scene& scene, const LightVertex& lv, const Vec3& 
   const Rgb tr = shadow_transmittance<true>(
       scene, Ray{origin, span / dist, dist * (1.f - 1e-4f), time}, sampler, rays);
   if (tr.is_black()) return {};
-  const float u =
-      light_vertex_weight(scene, x, pdf_x, lv.p, lv.n, n_y_shading, lv.light, lv.light_point, time);
+  const float u = light_vertex_weight(scene, x, pdf_x, lv.p, lv.n, n_y_shading, lv.light,
+                                      lv.light_point, time, strategies);
   return f_x * tr * f_y * lv.alpha * (cos_y * u / d2);
 }
 

@@ -77,7 +77,7 @@ void connect_from_medium(PathContext& ctx, const Vec3& p, const HgPhase& phase, 
   const LightVertex* lv = ctx.get_light_vertex(path.ray.time);
   if (!lv) return;
   const Rgb value = connect_light_vertex(ctx.scene, *lv, p, Vec3(0.f), path.ray.time, ctx.sampler,
-                                         ctx.result.rays, [&](const Vec3& wi) {
+                                         ctx.result.rays, ctx.strategies(), [&](const Vec3& wi) {
                                            const float f = phase.eval(wo, wi);
                                            return std::tuple{Rgb(f), f};
                                          });

@@ -37,6 +37,7 @@ struct PathContext {
   std::optional<LightVertex> light_vertex{};
 
   bool have_lights() const { return !scene.light_sampler.empty(); }
+  PathStrategies strategies() const { return {options.equiangular, options.equiangular_in_cone}; }
 
   const LightVertex* get_light_vertex(float time) {
     if (!light_vertex_traced) {
@@ -52,7 +53,7 @@ struct PathContext {
                            const Vec3& n_y_shading, size_t light, const Vec3& light_point) const {
     if (!light_vertices || path.count_emission_fully) return 0.f;
     return light_vertex_weight(scene, path.prev_vertex.p, path.prev_scatter_pdf, y, n_y,
-                               n_y_shading, light, light_point, path.ray.time);
+                               n_y_shading, light, light_point, path.ray.time, strategies());
   }
 
   // Adds a contribution to the pixel and, for layers/AOVs, to the path record.

@@ -82,7 +82,8 @@ void connect_from_surface(PathContext& ctx, const SurfaceHit& hit, const Bsdf& b
   const LightVertex* lv = ctx.get_light_vertex(time);
   if (!lv) return;
   const Rgb value = connect_light_vertex(
-      ctx.scene, *lv, hit.p, hit.n, time, ctx.sampler, ctx.result.rays, [&](const Vec3& wi_world) {
+      ctx.scene, *lv, hit.p, hit.n, time, ctx.sampler, ctx.result.rays, ctx.strategies(),
+      [&](const Vec3& wi_world) {
         const Vec3 wi = frame.to_local(wi_world);
         return std::tuple{bsdf_eval(bsdf, wo, wi) * std::abs(wi.z), bsdf_pdf(bsdf, wo, wi)};
       });

@@ -60,6 +60,34 @@ TEST(LightVertex, SphereLightsRenderTheSameExpectedImage) {
   EXPECT_LT(noise.median_ratio, 0.8);
 }
 
+// A point light inside dense fog, seen close up: camera-path vertices and
+// light vertices both fall near the light, where the weights hand paths to
+// equiangular sampling on the ray between them (light_vertex.h).
+SceneDescription point_light_in_fog_scene() {
+  SceneDescription d = empty_scene(24, 24, 256, 4);
+  d.camera.from = {0, 1, 2.2};
+  d.camera.to = {0.1, 1.05, 0};
+  d.camera.fov_degrees = 12;
+  const uint32_t white = add_material(d, "white", DiffuseMaterialDesc{Rgb(0.7f)});
+  add_quad(d, {-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white);
+  add_quad(d, {-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white);
+  add_light(d, PointLightDesc{{0.1, 1.05, 0.0}, Rgb(3.f, 2.7f, 2.2f), 0.0});
+  HomogeneousMediumDesc fog;
+  fog.sigma_s = Rgb(1.2f);
+  fog.sigma_a = Rgb(0.05f);
+  fog.g = 0.3;
+  fog.bounds = BoxDesc{{-1, 0, -1}, {1, 2, 1}};
+  MediumDesc& m = d.media.emplace_back();
+  m.name = "fog";
+  m.medium = fog;
+  return d;
+}
+
+TEST(LightVertex, PointLightInsideFogRendersTheSameExpectedImage) {
+  const Scene scene = build_scene(point_light_in_fog_scene());
+  expect_estimators_agree(scene, with_connections(true), with_connections(false));
+}
+
 TEST(LightVertex, RespectsTheMaximumDepth) {
   // At max_depth 1 only single scattering exists: a connection (two events)
   // must add nothing, or the two estimators would differ.
