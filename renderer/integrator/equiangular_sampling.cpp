@@ -56,8 +56,10 @@ EquiangularSample sample_equiangular(const Scene& scene, const Ray& ray,
                                      Sampler& sampler, uint32_t& rays, bool clip_to_cone) {
   EquiangularSample out;
   float pmf = 0.f, u_rest = 0.f;
-  const size_t li = scene.light_sampler.sample(sampler.next1(), &pmf, &u_rest);
+  const float u_pick = sampler.next1();
   const Vec2 u_eq = sampler.next2();
+  if (!scene.light_sampler.has_aimable()) return out;
+  const size_t li = scene.light_sampler.sample_aimable(u_pick, &pmf, &u_rest);
   out.light = li;
   const Light& light = scene.lights[li];
   const auto seg = eligible_segment(light, ray, spans, clip_to_cone);

@@ -77,7 +77,7 @@ float equiangular_density(const Scene& scene, const Vec3& x, const Vec3& w_x, fl
   scene.media.majorant_spans(ray, ray.tmax, spans);
   if (spans.empty()) return 0.f;
   return equiangular_pdf(scene.lights[light], ray, spans, dist, clip_to_cone) *
-         scene.light_sampler.pmf(light);
+         scene.light_sampler.pmf_aimable(light);
 }
 
 struct Emission {

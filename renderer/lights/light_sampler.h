@@ -26,7 +26,7 @@ struct ShadingPoint {
 // shadow rays from the key light, but it also starves small nearby lights
 // (candles) next to a sun whose power is counted over the whole scene even
 // when it only enters through a window; the uniform half bounds every light's
-// share from below.
+// share from below (base_weights says where Spatial spreads it).
 //
 // Spatial keeps the lights at infinity at their base share and splits the
 // finite lights' base share by their importance at the shading point
@@ -52,21 +52,23 @@ class LightSampler {
                LightSelection mode = LightSelection::Spatial)
       : mode_(mode) {
     if (lights.empty()) return;
-    double total = 0;
     for (const auto& l : lights) {
       const float p = l.power(scene_radius);
       power_.push_back(std::isfinite(p) && p > 0.f ? p : 0.f);
       bounds_.push_back(l.bounds());
-      total += power_.back();
     }
-    std::vector<float> w;
-    w.reserve(lights.size());
-    // Lights that emit nothing (switched off, zero area) get no samples.
-    const size_t emitting =
-        size_t(std::count_if(power_.begin(), power_.end(), [](float p) { return p > 0.f; }));
-    for (float p : power_)
-      w.push_back(p > 0.f ? float(0.5 * p / total) + 0.5f / float(emitting) : 0.f);
+    std::vector<float> w = base_weights(mode);
+    // Equiangular sampling can only aim at lights that are one point (or a
+    // sphere around one): Spatial picks among those alone, by the same
+    // weights; PowerUniform keeps the choice among all lights it had before
+    // (issue 11's starting point, which wasted the picks of the others).
+    std::vector<float> aimable(w);
+    if (mode == LightSelection::Spatial)
+      for (size_t i = 0; i < aimable.size(); ++i)
+        if (!bounds_[i] || !bounds_[i]->aim()) aimable[i] = 0.f;
     dist_ = Distribution1D(std::move(w));
+    if (std::any_of(aimable.begin(), aimable.end(), [](float a) { return a > 0.f; }))
+      aimable_ = Distribution1D(std::move(aimable));
     for (size_t i = 0; i < power_.size(); ++i)
       if (bounds_[i] && power_[i] > 0.f) finite_share_ += dist_.discrete_pmf(i);
   }
@@ -79,6 +81,15 @@ class LightSampler {
     return dist_.sample_discrete(u, pmf, u_remapped);
   }
   float pmf(size_t light_index) const { return dist_.discrete_pmf(light_index); }
+  // Equiangular sampling's choice: among the lights it can aim at (point and
+  // spot lights, with or without a radius); none when there are none.
+  bool has_aimable() const { return aimable_.size() > 0; }
+  size_t sample_aimable(float u, float* pmf, float* u_remapped) const {
+    return aimable_.sample_discrete(u, pmf, u_remapped);
+  }
+  float pmf_aimable(size_t light_index) const {
+    return has_aimable() ? aimable_.discrete_pmf(light_index) : 0.f;
+  }
   // What the lights are, for strategies that start at them (light_vertex.h).
   const std::vector<float>& powers() const { return power_; }
   const std::vector<std::optional<LightBounds>>& bounds() const { return bounds_; }
@@ -116,6 +127,31 @@ class LightSampler {
   }
 
  private:
+  // Half by power, half uniform. Lights that emit nothing (switched off,
+  // zero area) get no samples. Spatial spreads the uniform half over the
+  // finite lights only, where there are any: it protects small lights that
+  // are bright up close (a candle beside a sun), and lights at infinity are
+  // never close; a dim sky then stops taking half the shadow rays
+  // (fog-shafts: 56 % of them before). PowerUniform spreads it over all.
+  std::vector<float> base_weights(LightSelection mode) const {
+    double total = 0;
+    size_t emitting = 0, finite = 0;
+    for (size_t i = 0; i < power_.size(); ++i) {
+      total += power_[i];
+      emitting += power_[i] > 0.f;
+      finite += power_[i] > 0.f && bounds_[i].has_value();
+    }
+    const bool finite_only = mode == LightSelection::Spatial && finite > 0;
+    const float uniform = 0.5f / float(finite_only ? finite : emitting);
+    std::vector<float> w;
+    w.reserve(power_.size());
+    for (size_t i = 0; i < power_.size(); ++i) {
+      const bool emits = power_[i] > 0.f;
+      const bool takes_uniform = emits && (!finite_only || bounds_[i].has_value());
+      w.push_back(emits ? float(0.5 * power_[i] / total) + (takes_uniform ? uniform : 0.f) : 0.f);
+    }
+    return w;
+  }
   static size_t pick(size_t i, float w, float total, float u_rest, float* pmf, float* u_remapped) {
     *pmf = total > 0.f ? w / total : 0.f;
     *u_remapped = std::min(u_rest, 0x1.fffffep-1f);
@@ -157,6 +193,7 @@ class LightSampler {
   std::vector<std::optional<LightBounds>> bounds_;
   float finite_share_ = 0.f;  // base probability of all finite lights together
   Distribution1D dist_;
+  Distribution1D aimable_;
 };
 
 }  // namespace vesper

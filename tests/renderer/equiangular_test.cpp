@@ -92,5 +92,15 @@ TEST(Equiangular, AimsAtASphereLightsCentreWithoutBias) {
   expect_on_and_off_agree(build_scene(fog_shaft_scene(0.15)));
 }
 
+TEST(Equiangular, AimsOnlyAtLightsItCanAimAtWithoutBias) {
+  // A sky and a quad light beside the spot: equiangular sampling picks among
+  // the lights it can aim at (the spot alone), next-event estimation among
+  // all three.
+  SceneDescription d = fog_shaft_scene();
+  add_light(d, EnvironmentLightDesc{Rgb(0.3f), std::nullopt, "", 1, 0});
+  add_light(d, QuadLightDesc{{1.0, 2.4, -1.0}, {0.5, 0, 0}, {0, 0, 0.5}, Rgb(4.f)});
+  expect_on_and_off_agree(build_scene(d));
+}
+
 }  // namespace
 }  // namespace vesper::test

@@ -81,6 +81,60 @@ TEST(LightSelection, DrawnIndicesFollowThePmf) {
   EXPECT_GT(expected[0], 2.0 * s.pmf(0));
 }
 
+TEST(LightSelection, TheUniformHalfGoesToFiniteLightsOnly) {
+  // Lights at infinity are never close: they keep half their power share,
+  // the finite lights split the uniform half (light_sampler.h).
+  const std::vector<Light> lights = candle_lights();
+  const LightSampler s(lights, 10.f, LightSelection::Spatial);
+  double total = 0;
+  for (const Light& l : lights) total += l.power(10.f);
+  const size_t sun = lights.size() - 1;
+  EXPECT_NEAR(s.pmf(sun), 0.5 * lights[sun].power(10.f) / total, 1e-6);
+  for (size_t i = 0; i < sun; ++i)
+    EXPECT_NEAR(s.pmf(i), 0.5 * lights[i].power(10.f) / total + 0.5 / double(sun), 1e-6);
+  // With only lights at infinity the uniform half is theirs.
+  const std::vector<Light> skies{lights[sun], EnvironmentLight{Rgb(0.01f), nullptr}};
+  const LightSampler sky(skies, 10.f, LightSelection::Spatial);
+  double sky_total = 0;
+  for (const Light& l : skies) sky_total += l.power(10.f);
+  EXPECT_NEAR(sky.pmf(1), 0.5 * skies[1].power(10.f) / sky_total + 0.25, 1e-6);
+}
+
+TEST(LightSelection, EquiangularChoiceFollowsItsPmfAmongAimableLights) {
+  // Pearson chi-square of 200000 draws, alpha = 0.01: only the candles (one
+  // point each) can be aimed at; their pmfs keep the base weights' ratios.
+  const std::vector<Light> lights = candle_lights();
+  const LightSampler s(lights, 10.f, LightSelection::Spatial);
+  ASSERT_TRUE(s.has_aimable());
+  const size_t candles = 10;
+  EXPECT_EQ(s.pmf_aimable(candles), 0.f);      // the quad
+  EXPECT_EQ(s.pmf_aimable(candles + 1), 0.f);  // the sun
+  double candle_base = 0;
+  for (size_t i = 0; i < candles; ++i) candle_base += s.pmf(i);
+  std::vector<double> observed(lights.size(), 0.0);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<float> uniform(0.f, 1.f);
+  constexpr int kDraws = 200000;
+  for (int k = 0; k < kDraws; ++k) {
+    float pmf = 0.f, u_rest = 0.f;
+    const size_t i = s.sample_aimable(uniform(rng), &pmf, &u_rest);
+    ASSERT_LT(i, candles);
+    ASSERT_EQ(pmf, s.pmf_aimable(i));
+    observed[i] += 1;
+  }
+  double chi2 = 0;
+  for (size_t i = 0; i < candles; ++i) {
+    EXPECT_NEAR(s.pmf_aimable(i), s.pmf(i) / candle_base, 1e-5);
+    const double e = s.pmf_aimable(i) * kDraws;
+    chi2 += (observed[i] - e) * (observed[i] - e) / e;
+  }
+  EXPECT_GT(stats::chi2_p_value(chi2, int(candles) - 1), 0.01) << "chi2 " << chi2;
+  // No light to aim at: none is offered.
+  const LightSampler none({lights[candles], lights[candles + 1]}, 10.f, LightSelection::Spatial);
+  EXPECT_FALSE(none.has_aimable());
+  EXPECT_EQ(none.pmf_aimable(0), 0.f);
+}
+
 TEST(LightSelection, OnlyProvablyDarkLightsGetNothing) {
   std::vector<Light> lights;
   lights.push_back(PointLight{Vec3(0, 1, 0), Rgb(1.f)});      // above the surface
