@@ -236,7 +236,7 @@ TEST(LightTree, RenderAgreesWithPowerUniform) {
     else if (i % 3 == 1)
       add_light(d, SpotLightDesc{p, {0.3, -1, 0}, Rgb(power), 35, 25, 0});
     else
-      add_light(d, QuadLightDesc{p, {0, 0, 0.3}, {0.3, 0, 0}, Rgb(power * 3)});
+      add_light(d, QuadLightDesc{p, {0.3, 0, 0}, {0, 0, 0.3}, Rgb(power * 3)});  // faces down
   }
   SceneDescription by_power = d;
   d.render.light_selection = LightSelection::Tree;
@@ -244,7 +244,7 @@ TEST(LightTree, RenderAgreesWithPowerUniform) {
   const Scene tree = build_scene(d), power = build_scene(by_power);
   ASSERT_TRUE(tree.light_sampler.uses_tree());
   RenderOptions o;
-  o.spp = 16;
+  o.spp = 128;
   const EstimatorNoise noise = expect_estimators_agree(tree, o, power, o, 10, 6);
   EXPECT_GT(noise.se_b, 0.0);  // the lights reach the film
 }
