@@ -36,7 +36,7 @@ namespace vesper {
 class LightSampler {
  public:
   static constexpr float kFloor = 0.1f;
-  static constexpr size_t kTreeThreshold = 32;
+  static constexpr size_t kTreeThreshold = 64;
 
   // What a spatial choice at a point sums over all lights. Next-event
   // estimation keeps it so that the MIS weight of a light that the vertex's
