@@ -86,6 +86,28 @@ TEST(LightTree, PmfSumsToOneWhereNoLightIsProvablyDark) {
   }
 }
 
+TEST(LightTree, CoincidentLightsAndLightsAtInfinityAlone) {
+  // 100 lights at one point still make a balanced tree (median splits).
+  std::vector<Light> lights(100, Light(PointLight{Vec3(1, 2, 3), Rgb(1.f), 0.f}));
+  const LightSampler s(lights, 10.f, LightSelection::Tree);
+  const ShadingPoint at{Vec3(0.f), Vec3(0, 1, 0)};
+  double sum = 0;
+  for (size_t i = 0; i < lights.size(); ++i) sum += s.pmf(at, i);
+  EXPECT_NEAR(sum, 1.0, 1e-5);
+  std::vector<LightTree::Item> items;
+  for (size_t i = 0; i < lights.size(); ++i) items.push_back({i, *lights[i].bounds(), 1.f});
+  EXPECT_LE(LightTree(items, lights.size()).depth(), 7u);  // ceil(log2(100))
+  // Only a sun: the tree is empty and the sun takes every choice.
+  SunLight sun;
+  sun.direction = Vec3(0, 1, 0);
+  sun.irradiance = Rgb(1.f);
+  const LightSampler only_sun({Light(sun)}, 10.f, LightSelection::Tree);
+  float pmf = 0.f, u_rest = 0.f;
+  EXPECT_EQ(only_sun.sample(at, 0.7f, &pmf, &u_rest), 0u);
+  EXPECT_EQ(pmf, 1.f);
+  EXPECT_EQ(only_sun.pmf(at, 0), 1.f);
+}
+
 // Pearson chi-square of `draws` choices at `at` against pmf(at, i), with one
 // more cell for "no light" (a walk that found every light below provably
 // dark) expected 1 - sum of the pmfs. Every draw's pmf must be pmf(at, i)
