@@ -70,7 +70,12 @@ class LightTree {
   };
 
   size_t build(std::vector<Item>& items, size_t begin, size_t end, uint64_t bits, int depth);
-  std::optional<float> importance(const Node& node, const ShadingPoint& at) const;
+  // A node's importance at a point with its power at its box's centre and
+  // at its nearest point (light_tree.cpp); a leaf's is its light's, twice.
+  struct Importance {
+    float centre = 0, nearest = 0;
+  };
+  std::optional<Importance> importance(const Node& node, const ShadingPoint& at) const;
   std::optional<Odds> odds(size_t inner, const ShadingPoint& at) const;
 
   std::vector<Node> nodes_;  // depth first, the root at 0
