@@ -30,13 +30,14 @@ inline constexpr float kImportanceSlack = 1e-4f;
 // unit normal of an opaque surface, on the side that reflects (zero in a
 // medium or for a transmissive surface: every direction counts). nullopt:
 // the light provably gives p nothing.
+// `near`: the distance clamp as a fraction of the squared bounding radius.
 inline std::optional<float> light_importance(const LightBounds& b, float power, const Vec3& p,
-                                             const Vec3& n) {
+                                             const Vec3& n, float near = 1.f) {
   const Vec3 centre = (b.lo + b.hi) * 0.5f;
   const float r2 = length_squared(b.hi - b.lo) * 0.25f;  // bounding sphere, squared radius
   const Vec3 to_light = centre - p;
   const float d2 = length_squared(to_light);
-  const float importance = power / std::max({d2, r2, 1e-12f});
+  const float importance = power / std::max({d2, r2 * near, 1e-12f});
   // Inside the bounding sphere every direction may reach the light.
   if (!(d2 > r2)) return importance;
   const float d = std::sqrt(d2);

@@ -8,18 +8,11 @@
 #include "renderer/lights/light.h"
 #include "renderer/lights/light_importance.h"
 #include "renderer/lights/light_selection.h"
+#include "renderer/lights/light_tree.h"
+#include "renderer/lights/shading_point.h"
 #include "renderer/sampling/distribution.h"
 
 namespace vesper {
-
-// Where a light is chosen for: a surface point with the normal of its
-// reflecting side, or (n = 0) a point in a medium or on a transmissive
-// surface. The MIS weight of a BSDF ray that hits a light needs the pmf at
-// the vertex the ray left, so paths keep this (integrator/path_context.h).
-struct ShadingPoint {
-  Vec3 p;
-  Vec3 n;
-};
 
 // PowerUniform picks a light with probability half proportional to its
 // power, half uniform ("base"). Power alone lets a dim fill light take few
@@ -33,10 +26,17 @@ struct ShadingPoint {
 // (light_importance.h): (1 - kFloor) by importance, kFloor evenly over every
 // finite light that may reach the point, so an occluded bright neighbour
 // cannot starve the others. One O(N) pass per choice: fine for tens of
-// lights; many lights want a light tree (future work).
+// lights.
+//
+// Tree makes the finite lights' choice with a light tree instead
+// (light_tree.h): O(log N) per choice and per pmf, a coarser estimate. The
+// lights at infinity keep their base share as in Spatial. Spatial itself
+// switches to the tree above kTreeThreshold finite lights (measured:
+// bench/README.md, "Light tree"), so scenes with few lights render as before.
 class LightSampler {
  public:
   static constexpr float kFloor = 0.1f;
+  static constexpr size_t kTreeThreshold = 64;
 
   // What a spatial choice at a point sums over all lights. Next-event
   // estimation keeps it so that the MIS weight of a light that the vertex's
@@ -48,8 +48,10 @@ class LightSampler {
   };
 
   LightSampler() = default;
+  // `tree_threshold`: Spatial's switch to the tree (benches force either side).
   LightSampler(const std::vector<Light>& lights, float scene_radius,
-               LightSelection mode = LightSelection::Spatial)
+               LightSelection mode = LightSelection::Spatial,
+               size_t tree_threshold = kTreeThreshold)
       : mode_(mode) {
     if (lights.empty()) return;
     for (const auto& l : lights) {
@@ -59,11 +61,11 @@ class LightSampler {
     }
     std::vector<float> w = base_weights(mode);
     // Equiangular sampling can only aim at lights that are one point (or a
-    // sphere around one): Spatial picks among those alone, by the same
-    // weights; PowerUniform keeps the choice among all lights it had before
-    // (issue 11's starting point, which wasted the picks of the others).
+    // sphere around one): Spatial and Tree pick among those alone, by the
+    // same weights; PowerUniform keeps the choice among all lights it had
+    // before (issue 11's start, which wasted the picks of the others).
     std::vector<float> aimable(w);
-    if (mode == LightSelection::Spatial)
+    if (mode != LightSelection::PowerUniform)
       for (size_t i = 0; i < aimable.size(); ++i)
         if (!bounds_[i] || !bounds_[i]->aim()) aimable[i] = 0.f;
     dist_ = Distribution1D(std::move(w));
@@ -71,12 +73,19 @@ class LightSampler {
       aimable_ = Distribution1D(std::move(aimable));
     for (size_t i = 0; i < power_.size(); ++i)
       if (bounds_[i] && power_[i] > 0.f) finite_share_ += dist_.discrete_pmf(i);
+    const size_t finite = size_t(
+        std::count_if(bounds_.begin(), bounds_.end(), [](const auto& b) { return b.has_value(); }));
+    if (mode == LightSelection::Tree ||
+        (mode == LightSelection::Spatial && finite > tree_threshold))
+      build_tree();
   }
   bool empty() const { return dist_.size() == 0; }
   LightSelection mode() const { return mode_; }
+  // Whether the finite lights are chosen with the light tree (Tree, or
+  // Spatial with many lights).
+  bool uses_tree() const { return uses_tree_; }
 
-  // The base choice, the same everywhere (equiangular sampling, which picks
-  // a light for a whole ray).
+  // The base choice, the same everywhere.
   size_t sample(float u, float* pmf, float* u_remapped) const {
     return dist_.sample_discrete(u, pmf, u_remapped);
   }
@@ -99,6 +108,10 @@ class LightSampler {
   size_t sample(const ShadingPoint& at, float u, float* pmf, float* u_remapped,
                 Sums* sums_out = nullptr) const {
     if (mode_ == LightSelection::PowerUniform) return sample(u, pmf, u_remapped);
+    if (uses_tree_) {
+      if (sums_out) *sums_out = Sums{};
+      return sample_tree(at, u, pmf, u_remapped);
+    }
     const std::vector<float>& imp = importances(at);
     const Sums s = sums(imp);
     if (sums_out) *sums_out = s;
@@ -118,18 +131,21 @@ class LightSampler {
   }
   float pmf(const ShadingPoint& at, size_t light_index) const {
     if (mode_ == LightSelection::PowerUniform) return pmf(light_index);
+    if (uses_tree_) return pmf_tree(at, light_index);
     return pmf(at, light_index, sums(importances(at)));
   }
   // The same with the sums sample(at, ...) gave at `at`: one importance.
+  // (The tree keeps no sums: its pmf is one walk down to the light.)
   float pmf(const ShadingPoint& at, size_t light_index, const Sums& s) const {
     if (mode_ == LightSelection::PowerUniform) return pmf(light_index);
+    if (uses_tree_) return pmf_tree(at, light_index);
     return s.total > 0.f ? weight(light_index, importance(light_index, at), s) / s.total : 0.f;
   }
 
  private:
   // Half by power, half uniform. Lights that emit nothing (switched off,
-  // zero area) get no samples. Spatial spreads the uniform half over the
-  // finite lights only, where there are any: it protects small lights that
+  // zero area) get no samples. Spatial and Tree spread the uniform half
+  // over the finite lights only, where there are any: it protects lights that
   // are bright up close (a candle beside a sun), and lights at infinity are
   // never close; a dim sky then stops taking half the shadow rays
   // (fog-shafts: 56 % of them before). PowerUniform spreads it over all.
@@ -141,7 +157,7 @@ class LightSampler {
       emitting += power_[i] > 0.f;
       finite += power_[i] > 0.f && bounds_[i].has_value();
     }
-    const bool finite_only = mode == LightSelection::Spatial && finite > 0;
+    const bool finite_only = mode != LightSelection::PowerUniform && finite > 0;
     const float uniform = 0.5f / float(finite_only ? finite : emitting);
     std::vector<float> w;
     w.reserve(power_.size());
@@ -152,6 +168,46 @@ class LightSampler {
     }
     return w;
   }
+  void build_tree() {
+    std::vector<LightTree::Item> items;
+    std::vector<float> infinite_weights;
+    for (size_t i = 0; i < power_.size(); ++i) {
+      if (bounds_[i] && power_[i] > 0.f) items.push_back({i, *bounds_[i], power_[i]});
+      if (!bounds_[i]) {
+        infinite_.push_back(i);
+        infinite_weights.push_back(dist_.discrete_pmf(i));
+        infinite_share_ += dist_.discrete_pmf(i);
+      }
+    }
+    tree_ = LightTree(std::move(items), power_.size());
+    infinite_dist_ = Distribution1D(std::move(infinite_weights));
+    uses_tree_ = true;
+  }
+  // The finite lights' share at `at`: all of theirs, or none when the tree
+  // proves that none reaches it.
+  float tree_share(const ShadingPoint& at) const { return tree_.reaches(at) ? finite_share_ : 0.f; }
+  size_t sample_tree(const ShadingPoint& at, float u, float* pmf, float* u_remapped) const {
+    const float finite = tree_share(at), total = finite + infinite_share_;
+    const float target = u * total;
+    if (finite > 0.f && (target < finite || infinite_.empty())) {
+      const LightTree::Choice c = tree_.sample(at, below_one(target / finite));
+      *pmf = c.pmf * (finite / total);
+      *u_remapped = c.u_rest;
+      return c.light;
+    }
+    if (infinite_.empty() || !(infinite_share_ > 0.f)) return pick(0, 0.f, 0.f, u, pmf, u_remapped);
+    const size_t i = infinite_[infinite_dist_.sample_discrete(
+        below_one((target - finite) / infinite_share_), nullptr, u_remapped)];
+    *pmf = dist_.discrete_pmf(i) / total;
+    return i;
+  }
+  float pmf_tree(const ShadingPoint& at, size_t i) const {
+    const float finite = tree_share(at), total = finite + infinite_share_;
+    if (!(total > 0.f)) return 0.f;
+    if (!bounds_[i]) return dist_.discrete_pmf(i) / total;
+    return finite > 0.f ? tree_.pmf(at, i) * (finite / total) : 0.f;
+  }
+  static float below_one(float u) { return std::min(u, 0x1.fffffep-1f); }
   static size_t pick(size_t i, float w, float total, float u_rest, float* pmf, float* u_remapped) {
     *pmf = total > 0.f ? w / total : 0.f;
     *u_remapped = std::min(u_rest, 0x1.fffffep-1f);
@@ -194,6 +250,12 @@ class LightSampler {
   float finite_share_ = 0.f;  // base probability of all finite lights together
   Distribution1D dist_;
   Distribution1D aimable_;
+  // With the tree: the lights at infinity (indices) and their base choice.
+  bool uses_tree_ = false;
+  LightTree tree_;
+  std::vector<size_t> infinite_;
+  float infinite_share_ = 0.f;
+  Distribution1D infinite_dist_;
 };
 
 }  // namespace vesper

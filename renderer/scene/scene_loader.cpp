@@ -115,7 +115,7 @@ RenderDesc parse_render(JsonReader node) {
   if (const auto aovs = node.optional_child("aovs")) render.aovs = read_aov_list(*aovs);
   parse_sampling_budget(node, render);
   parse_shutter(node, render);
-  static constexpr std::string_view kLightSelections[] = {"spatial", "power_uniform"};
+  static constexpr std::string_view kLightSelections[] = {"spatial", "power_uniform", "tree"};
   render.light_selection = LightSelection(node.enumeration("light_selection", 0, kLightSelections));
   return render;
 }

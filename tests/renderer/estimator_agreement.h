@@ -18,11 +18,13 @@ struct EstimatorNoise {
   double median_ratio = 0;    // median over tiles of se_a / se_b (robust to one firefly)
 };
 
-inline EstimatorNoise expect_estimators_agree(const Scene& scene, const RenderOptions& a,
-                                              const RenderOptions& b, int batches = 10,
-                                              int tile = 6) {
-  const TileStats sa = tile_stats(scene, batches, a.spp, tile, 100, a);
-  const TileStats sb = tile_stats(scene, batches, b.spp, tile, 500, b);
+// Estimator a renders scene_a, b scene_b: the same scene built two ways
+// (e.g. another render.light_selection).
+inline EstimatorNoise expect_estimators_agree(const Scene& scene_a, const RenderOptions& a,
+                                              const Scene& scene_b, const RenderOptions& b,
+                                              int batches = 10, int tile = 6) {
+  const TileStats sa = tile_stats(scene_a, batches, a.spp, tile, 100, a);
+  const TileStats sb = tile_stats(scene_b, batches, b.spp, tile, 500, b);
   const double crit = sidak_t_critical(0.01, int(sa.mean.size()), batches - 1);
   EstimatorNoise noise;
   double z_max = 0;
@@ -47,6 +49,12 @@ inline EstimatorNoise expect_estimators_agree(const Scene& scene, const RenderOp
       "(critical %.2f)\n",
       noise.se_a, noise.se_b, noise.median_ratio, z_max, crit);
   return noise;
+}
+
+inline EstimatorNoise expect_estimators_agree(const Scene& scene, const RenderOptions& a,
+                                              const RenderOptions& b, int batches = 10,
+                                              int tile = 6) {
+  return expect_estimators_agree(scene, a, scene, b, batches, tile);
 }
 
 }  // namespace vesper::test

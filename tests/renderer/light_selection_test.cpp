@@ -10,6 +10,7 @@
 
 #include "analytic_plane.h"
 #include "chi2.h"
+#include "light_fixtures.h"
 #include "minimal_scene.h"
 #include "render_stats.h"
 #include "renderer/lights/light_sampler.h"
@@ -19,17 +20,7 @@
 namespace vesper {
 namespace {
 
-QuadLight make_quad(Vec3 corner, Vec3 e1, Vec3 e2, float radiance) {
-  QuadLight q;
-  q.corner = corner;
-  q.edge1 = e1;
-  q.edge2 = e2;
-  const Vec3 c = cross(e1, e2);
-  q.area = length(c);
-  q.normal = c / q.area;
-  q.radiance = Rgb(radiance);
-  return q;
-}
+using test::make_quad;
 
 // Ten small candles on a grid, a quad facing down, a sun.
 std::vector<Light> candle_lights() {
@@ -207,6 +198,9 @@ TEST(LightSelection, SpatialChoiceMatchesTheAnalyticPlane) {
 TEST(LightSelection, PowerUniformChoiceMatchesTheAnalyticPlane) {
   expect_plane_under_many_lights(LightSelection::PowerUniform);
 }
+TEST(LightSelection, TreeChoiceMatchesTheAnalyticPlane) {
+  expect_plane_under_many_lights(LightSelection::Tree);
+}
 
 }  // namespace
 }  // namespace vesper::test
@@ -219,6 +213,8 @@ TEST(LightSelection, SceneKeyDefaultsToSpatialAndRefusesOtherNames) {
   EXPECT_EQ(parse_scene(doc, "x.json").render.light_selection, LightSelection::Spatial);
   doc["render"]["light_selection"] = "power_uniform";
   EXPECT_EQ(parse_scene(doc, "x.json").render.light_selection, LightSelection::PowerUniform);
+  doc["render"]["light_selection"] = "tree";
+  EXPECT_EQ(parse_scene(doc, "x.json").render.light_selection, LightSelection::Tree);
   doc["render"]["light_selection"] = "nearest";
   try {
     parse_scene(doc, "x.json");
