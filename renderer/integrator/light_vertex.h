@@ -14,7 +14,8 @@
 // u = P_light^2 / (P_light^2 + P_path^2) goes to the connection and (1 - u)
 // scales the path tracer's estimates (whose own equiangular/distance MIS
 // weights sum to 1). P_path is the density of y for the path tracer's
-// distance sampling and light choice, P_light that of the light vertex; both
+// distance sampling and light choice (and its equiangular sampling: see
+// light_vertex_weight), P_light that of the light vertex; both
 // are deterministic functions of (x, y, light), evaluated by the same code
 // on both sides, so the weights are a partition of unity and the sum is
 // unbiased. Point and spot lights take part, with or without a radius: a
