@@ -6,6 +6,7 @@
 #include <random>
 
 #include "chi2.h"
+#include "light_fixtures.h"
 #include "renderer/lights/light_sampler.h"
 #include "renderer/sampling/sampler.h"
 
@@ -29,17 +30,7 @@ float hit_quad(const QuadLight& q, const Vec3& p, const Vec3& wi) {
   return (a >= 0.f && a <= 1.f && b >= 0.f && b <= 1.f) ? t : -1.f;
 }
 
-QuadLight make_quad(Vec3 corner, Vec3 e1, Vec3 e2) {
-  QuadLight q;
-  q.corner = corner;
-  q.edge1 = e1;
-  q.edge2 = e2;
-  const Vec3 c = cross(e1, e2);
-  q.area = length(c);
-  q.normal = c / q.area;
-  q.radiance = Rgb(1.f);
-  return q;
-}
+QuadLight make_quad(Vec3 corner, Vec3 e1, Vec3 e2) { return test::make_quad(corner, e1, e2, 1.f); }
 
 void expect_quad_sampling_matches_pdf(const QuadLight& q, const Vec3& p) {
   Sampler s(uint64_t(12345));
