@@ -24,6 +24,9 @@ Rgb connect_light_vertex(const Scene& scene, const LightVertex& lv, const Vec3& 
   const Vec3 dir = to_y / std::sqrt(d2);
   const auto [f_x, pdf_x] = eval(dir);
   if (f_x.is_black()) return {};
+  // No direction toward the light from a vertex on it (trace_light_vertex
+  // makes none; a NaN phase here would poison the pixel).
+  if (!(length_squared(lv.light_point - lv.p) > 0.f)) return {};
   const Vec3 to_light = normalize(lv.light_point - lv.p);
   Rgb f_y;
   float cos_y = 1.f;

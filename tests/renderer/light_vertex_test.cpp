@@ -3,7 +3,11 @@
 // dominates.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <tuple>
+
 #include "estimator_agreement.h"
+#include "renderer/integrator/light_vertex_connection.h"
 #include "scene_fixtures.h"
 
 namespace vesper::test {
@@ -86,6 +90,26 @@ SceneDescription point_light_in_fog_scene() {
 TEST(LightVertex, PointLightInsideFogRendersTheSameExpectedImage) {
   const Scene scene = build_scene(point_light_in_fog_scene());
   expect_estimators_agree(scene, with_connections(true), with_connections(false));
+}
+
+TEST(LightVertex, AVertexOnItsLightConnectsToNothing) {
+  // Delta tracking can collide at distance 0 from a sphere light's surface:
+  // no direction toward the light is left there (the night room's candles
+  // gave 3 NaN samples in 1.6 million before this was dropped).
+  const Scene scene = build_scene(point_light_in_fog_scene());
+  LightVertex lv;
+  lv.light_point = Vec3(0.1f, 1.05f, 0.f);
+  lv.p = lv.light_point;
+  lv.alpha = Rgb(1.f);
+  lv.g = 0.3f;
+  Sampler sampler(uint64_t(5));
+  uint32_t rays = 0;
+  const Rgb value = connect_light_vertex(scene, lv, Vec3(0.f, 1.f, 0.5f), Vec3(0.f), 0.f, sampler,
+                                         rays, PathStrategies{}, [](const Vec3&) {
+                                           return std::tuple{Rgb(0.25f), 0.25f};
+                                         });
+  EXPECT_TRUE(std::isfinite(value.r) && std::isfinite(value.g) && std::isfinite(value.b));
+  EXPECT_TRUE(value.is_black());
 }
 
 TEST(LightVertex, RespectsTheMaximumDepth) {
