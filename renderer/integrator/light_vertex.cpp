@@ -166,10 +166,10 @@ std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sa
     v.n = hit->n;
     v.material = hit->material;
   }
-  // A spot's intensity (a spot sphere light's radiance too) depends on the
-  // receiver's direction from the centre.
   // A collision at distance 0 leaves no direction toward the light (its
-  // phase would be NaN): an event of measure zero, dropped.
+  // phase would be NaN): an event of measure zero, dropped. A spot's
+  // intensity (a spot sphere light's radiance too) depends on the receiver's
+  // direction from the centre.
   const Vec3 from_centre = v.p - *b.aim();
   if (!(length_squared(from_centre) > 0.f) || !(length_squared(v.p - e.origin) > 0.f))
     return std::nullopt;
