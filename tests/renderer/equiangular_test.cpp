@@ -71,14 +71,7 @@ SceneDescription fog_shaft_scene(double light_radius = 0) {
   add_light(d,
             SpotLightDesc{
                 {0.1, 2.5, 0.0}, normalize(Vec3d(0, -1, 0)), Rgb(40.f), 40.0, 30.0, light_radius});
-  HomogeneousMediumDesc fog;
-  fog.sigma_s = Rgb(0.3f);
-  fog.sigma_a = Rgb(0.05f);
-  fog.g = 0.3;
-  fog.bounds = BoxDesc{{-3, 0, -3}, {3, 3, 3}};
-  MediumDesc& m = d.media.emplace_back();
-  m.name = "fog";
-  m.medium = fog;
+  add_medium(d, "fog", fog_box(Rgb(0.05f), Rgb(0.3f), 0.3, {-3, 0, -3}, {3, 3, 3}));
   return d;
 }
 

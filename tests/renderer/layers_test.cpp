@@ -25,14 +25,7 @@ SceneDescription layered_scene() {
   const uint32_t glass = add_material(d, "glass", DielectricMaterialDesc{1.5, 0.0});
   add_sphere(d, {0.0, 1.2, -0.4}, 0.25, plastic);
   add_sphere(d, {-0.1, 0.25, 0.5}, 0.2, glass);
-  HomogeneousMediumDesc fog;
-  fog.sigma_s = Rgb(0.6f);
-  fog.sigma_a = Rgb(0.05f);
-  fog.g = 0.3;
-  fog.bounds = BoxDesc{{-1, 0, -1}, {1, 2, 1}};
-  MediumDesc& m1 = d.media.emplace_back();
-  m1.name = "fog";
-  m1.medium = fog;
+  add_medium(d, "fog", fog_box(Rgb(0.05f), Rgb(0.6f), 0.3, {-1, 0, -1}, {1, 2, 1}));
   VdbMediumDesc glow;
   glow.file = "glow";
   glow.density = std::make_shared<FunctionGrid>(9, 0.05, Vec3d(0.3, 0.2, -0.2),
@@ -42,9 +35,7 @@ SceneDescription layered_scene() {
   glow.emission_scale = 2.0;
   glow.emission_color = Rgb(1.f, 0.6f, 0.2f);
   glow.sigma_s = Rgb(2.f);
-  MediumDesc& m2 = d.media.emplace_back();
-  m2.name = "glow";
-  m2.medium = glow;
+  add_medium(d, "glow", glow);
   return d;
 }
 
@@ -260,13 +251,7 @@ TEST(Layers, LayerAlphaIsOneMinusCameraTransmittance) {
   add_quad(d, {-5, -5, -1}, {10, 0, 0}, {0, 10, 0},
            add_material(d, "wall", DiffuseMaterialDesc{Rgb(0.5f)}));
   add_light(d, EnvironmentLightDesc{});
-  HomogeneousMediumDesc fog;
-  fog.sigma_s = Rgb(0.3f);
-  fog.sigma_a = Rgb(0.2f);
-  fog.bounds = BoxDesc{{-5, -5, 0}, {5, 5, 2}};
-  MediumDesc& m = d.media.emplace_back();
-  m.name = "fog";
-  m.medium = fog;
+  add_medium(d, "fog", fog_box(Rgb(0.2f), Rgb(0.3f), 0.0, {-5, -5, 0}, {5, 5, 2}));
   d.layers = {layer("fog", PathSelection::Volume)};
   const FrameResult f = render_frame(d);
   const int a = f.image.channel_index("fog.A");

@@ -29,14 +29,7 @@ SceneDescription shaft_and_pool_scene(int max_depth, double radius = 0) {
   add_light(d, SpotLightDesc{
                    {0.1, 2.6, 0.0}, normalize(Vec3d(0, -1, 0.1)), Rgb(30.f), 25.0, 20.0, radius});
   add_light(d, PointLightDesc{{-1.2, 0.6, 0.8}, Rgb(0.3f, 0.2f, 0.1f), radius});
-  HomogeneousMediumDesc fog;
-  fog.sigma_s = Rgb(0.35f, 0.3f, 0.25f);
-  fog.sigma_a = Rgb(0.05f);
-  fog.g = 0.4;
-  fog.bounds = BoxDesc{{-3, 0, -2}, {3, 3, 3}};
-  MediumDesc& m = d.media.emplace_back();
-  m.name = "fog";
-  m.medium = fog;
+  add_medium(d, "fog", fog_box(Rgb(0.05f), Rgb(0.35f, 0.3f, 0.25f), 0.4, {-3, 0, -2}, {3, 3, 3}));
   return d;
 }
 
@@ -76,14 +69,7 @@ SceneDescription point_light_in_fog_scene() {
   add_quad(d, {-1, 0, 1}, {2, 0, 0}, {0, 0, -2}, white);
   add_quad(d, {-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white);
   add_light(d, PointLightDesc{{0.1, 1.05, 0.0}, Rgb(3.f, 2.7f, 2.2f), 0.0});
-  HomogeneousMediumDesc fog;
-  fog.sigma_s = Rgb(1.2f);
-  fog.sigma_a = Rgb(0.05f);
-  fog.g = 0.3;
-  fog.bounds = BoxDesc{{-1, 0, -1}, {1, 2, 1}};
-  MediumDesc& m = d.media.emplace_back();
-  m.name = "fog";
-  m.medium = fog;
+  add_medium(d, "fog", fog_box(Rgb(0.05f), Rgb(1.2f), 0.3, {-1, 0, -1}, {1, 2, 1}));
   return d;
 }
 

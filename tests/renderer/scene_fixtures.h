@@ -36,6 +36,23 @@ inline void add_light(SceneDescription& d, L light, std::string group = "") {
   l.group = std::move(group);
 }
 
+// A homogeneous medium filling the box lo..hi.
+inline HomogeneousMediumDesc fog_box(Rgb sa, Rgb ss, double g, Vec3d lo, Vec3d hi) {
+  HomogeneousMediumDesc m;
+  m.sigma_a = sa;
+  m.sigma_s = ss;
+  m.g = g;
+  m.bounds = BoxDesc{lo, hi};
+  return m;
+}
+
+inline void add_medium(SceneDescription& d, std::string name,
+                       std::variant<HomogeneousMediumDesc, VdbMediumDesc> m) {
+  MediumDesc& md = d.media.emplace_back();
+  md.name = std::move(name);
+  md.medium = std::move(m);
+}
+
 // A Cornell-style box: 2 units wide, quad ceiling light, a sphere and a box-ish quad.
 inline SceneDescription small_cornell(int w, int h, int spp) {
   SceneDescription d = empty_scene(w, h, spp, 6);

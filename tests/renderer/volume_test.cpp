@@ -18,22 +18,6 @@ namespace {
 
 constexpr double kAlpha = 0.01;
 
-HomogeneousMediumDesc fog_box(Rgb sa, Rgb ss, double g, Vec3d lo, Vec3d hi) {
-  HomogeneousMediumDesc m;
-  m.sigma_a = sa;
-  m.sigma_s = ss;
-  m.g = g;
-  m.bounds = BoxDesc{lo, hi};
-  return m;
-}
-
-void add_medium(SceneDescription& d, std::string name,
-                std::variant<HomogeneousMediumDesc, VdbMediumDesc> m) {
-  MediumDesc& md = d.media.emplace_back();
-  md.name = std::move(name);
-  md.medium = std::move(m);
-}
-
 // A grid medium of constant density 1 filling the world box [lo, hi] exactly
 // (n voxels per side).
 VdbMediumDesc constant_grid_box(Rgb sa, Rgb ss, double g, Vec3d lo, double size, int n = 9) {
