@@ -138,8 +138,9 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
   if (depth == 0 && options.want_camera_transmittance)
     ctx.result.camera_transmittance =
         estimate_transmittance(scene.media, path.ray, tmax, ctx.sampler).average();
-  const bool equiangular =
-      options.equiangular && !spans.empty() && ctx.have_lights() && depth < options.max_depth;
+  // Equiangular sampling needs a light it can aim at (a point or a sphere).
+  const bool equiangular = options.equiangular && !spans.empty() &&
+                           scene.light_sampler.has_aimable() && depth < options.max_depth;
   if (equiangular) add_equiangular(ctx, spans, depth, path);
 
   const FreeFlight flight = sample_free_flight_with_emission(ctx, spans, tmax, depth, path);

@@ -10,6 +10,7 @@
 #include "renderer/lights/light_selection.h"
 #include "renderer/lights/light_tree.h"
 #include "renderer/lights/shading_point.h"
+#include "renderer/math/constants.h"
 #include "renderer/sampling/distribution.h"
 
 namespace vesper {
@@ -190,14 +191,15 @@ class LightSampler {
     const float finite = tree_share(at), total = finite + infinite_share_;
     const float target = u * total;
     if (finite > 0.f && (target < finite || infinite_.empty())) {
-      const LightTree::Choice c = tree_.sample(at, below_one(target / finite));
+      const LightTree::Choice c =
+          tree_.sample_reaching(at, std::min(target / finite, kOneMinusEpsilon));
       *pmf = c.pmf * (finite / total);
       *u_remapped = c.u_rest;
       return c.light;
     }
     if (infinite_.empty() || !(infinite_share_ > 0.f)) return pick(0, 0.f, 0.f, u, pmf, u_remapped);
     const size_t i = infinite_[infinite_dist_.sample_discrete(
-        below_one((target - finite) / infinite_share_), nullptr, u_remapped)];
+        std::min((target - finite) / infinite_share_, kOneMinusEpsilon), nullptr, u_remapped)];
     *pmf = dist_.discrete_pmf(i) / total;
     return i;
   }
@@ -205,12 +207,11 @@ class LightSampler {
     const float finite = tree_share(at), total = finite + infinite_share_;
     if (!(total > 0.f)) return 0.f;
     if (!bounds_[i]) return dist_.discrete_pmf(i) / total;
-    return finite > 0.f ? tree_.pmf(at, i) * (finite / total) : 0.f;
+    return finite > 0.f ? tree_.pmf_reaching(at, i) * (finite / total) : 0.f;
   }
-  static float below_one(float u) { return std::min(u, 0x1.fffffep-1f); }
   static size_t pick(size_t i, float w, float total, float u_rest, float* pmf, float* u_remapped) {
     *pmf = total > 0.f ? w / total : 0.f;
-    *u_remapped = std::min(u_rest, 0x1.fffffep-1f);
+    *u_remapped = std::min(u_rest, kOneMinusEpsilon);
     return i;
   }
   // Each finite light's importance at `at`, -1 where it provably gives

@@ -30,9 +30,6 @@ float angle_between(const Vec3& a, const Vec3& b) {
 // 0.074 with the radius clamp alone, 0.045 with r^2 / 3, 0.039 averaged.
 constexpr float kCentreNear = 1.f / 3.f, kBoxNear = 0.01f;
 
-// Keeps u in [0, 1) after a remap.
-float below_one(float u) { return std::min(u, 0x1.fffffep-1f); }
-
 // The two walks mixed: most by importance, kFloor by light count.
 float mixed(float by_importance, float by_count) {
   return (1.f - LightTree::kFloor) * by_importance + LightTree::kFloor * by_count;
@@ -169,8 +166,12 @@ std::optional<LightTree::Odds> LightTree::odds(size_t inner, const ShadingPoint&
 // tree's share (as the linear choice's floor does, light_sampler.h).
 LightTree::Choice LightTree::sample(const ShadingPoint& at, float u) const {
   if (!reaches(at)) return {0, 0.f, u};
+  return sample_reaching(at, u);
+}
+
+LightTree::Choice LightTree::sample_reaching(const ShadingPoint& at, float u) const {
   const bool by_count = u < kFloor;
-  u = below_one(by_count ? u / kFloor : (u - kFloor) / (1.f - kFloor));
+  u = std::min(kOneMinusEpsilon, by_count ? u / kFloor : (u - kFloor) / (1.f - kFloor));
   float p_importance = 1.f, p_count = 1.f;
   size_t i = 0;
   while (!nodes_[i].leaf) {
@@ -178,7 +179,7 @@ LightTree::Choice LightTree::sample(const ShadingPoint& at, float u) const {
     if (!o) return {0, 0.f, u};
     const float first = by_count ? o->by_count : o->by_importance;
     const bool second = !(u < first);
-    u = below_one(second ? (u - first) / (1.f - first) : u / first);
+    u = std::min(kOneMinusEpsilon, second ? (u - first) / (1.f - first) : u / first);
     p_importance *= second ? 1.f - o->by_importance : o->by_importance;
     p_count *= second ? 1.f - o->by_count : o->by_count;
     i = second ? nodes_[i].second_or_light : i + 1;
@@ -187,7 +188,11 @@ LightTree::Choice LightTree::sample(const ShadingPoint& at, float u) const {
 }
 
 float LightTree::pmf(const ShadingPoint& at, size_t light) const {
-  if (light >= trails_.size() || trails_[light].depth < 0 || !reaches(at)) return 0.f;
+  return reaches(at) ? pmf_reaching(at, light) : 0.f;
+}
+
+float LightTree::pmf_reaching(const ShadingPoint& at, size_t light) const {
+  if (light >= trails_.size() || trails_[light].depth < 0) return 0.f;
   const Trail& trail = trails_[light];
   float p_importance = 1.f, p_count = 1.f;
   size_t i = 0;

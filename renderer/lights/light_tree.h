@@ -47,6 +47,10 @@ class LightTree {
   // The probability that sample(at, .) picks `light`: one walk down its
   // trail. 0 for lights that are not in the tree.
   float pmf(const ShadingPoint& at, size_t light) const;
+  // The same where the caller already knows reaches(at) (LightSampler tests
+  // it once to split its choice): the root's importance is not taken again.
+  Choice sample_reaching(const ShadingPoint& at, float u) const;
+  float pmf_reaching(const ShadingPoint& at, size_t light) const;
 
  private:
   struct Node {
