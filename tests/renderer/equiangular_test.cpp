@@ -92,7 +92,10 @@ TEST(Equiangular, AimsOnlyAtLightsItCanAimAtWithoutBias) {
   SceneDescription d = fog_shaft_scene();
   add_light(d, EnvironmentLightDesc{Rgb(0.3f), std::nullopt, "", 1, 0});
   add_light(d, QuadLightDesc{{1.0, 2.4, -1.0}, {0.5, 0, 0}, {0, 0, 0.5}, Rgb(4.f)});
-  expect_on_and_off_agree(build_scene(d));
+  const OnOffNoise noise = expect_on_and_off_agree(build_scene(d));
+  // Picks wasted on the sky and the quad show as noise: measured 0.30 of
+  // equiangular off's standard error, 0.39 when it picked among all lights.
+  EXPECT_LT(noise.se_on / noise.se_off, 0.35);
 }
 
 }  // namespace

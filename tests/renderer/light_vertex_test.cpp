@@ -75,7 +75,11 @@ SceneDescription point_light_in_fog_scene() {
 
 TEST(LightVertex, PointLightInsideFogRendersTheSameExpectedImage) {
   const Scene scene = build_scene(point_light_in_fog_scene());
-  expect_estimators_agree(scene, with_connections(true), with_connections(false));
+  const EstimatorNoise noise =
+      expect_estimators_agree(scene, with_connections(true), with_connections(false));
+  // Counting equiangular in P_path pays here: median tile se ratio measured
+  // 0.58 with it, 0.67 when the weights leave it out.
+  EXPECT_LT(noise.median_ratio, 0.62);
 }
 
 TEST(LightVertex, AVertexOnItsLightConnectsToNothing) {
