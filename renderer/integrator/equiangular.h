@@ -12,7 +12,7 @@ namespace vesper {
 struct EquiangularSegment {
   float delta = 0;  // t of the point on the ray closest to the light
   float dist = 0;   // distance from the light to the ray
-  float theta_a = 0, theta_b = 0;
+  float angle = 0;  // theta_b - theta_a: the angle [ta, tb] subtends at the light
   float ta = 0, tb = 0;
 
   // nullopt when the light lies on the ray's line (the density degenerates)
@@ -27,19 +27,22 @@ struct EquiangularSegment {
       return std::nullopt;
     s.ta = ta;
     s.tb = tb;
-    s.theta_a = std::atan2(ta - s.delta, s.dist);
-    s.theta_b = std::atan2(tb - s.delta, s.dist);
-    if (!(s.theta_b > s.theta_a)) return std::nullopt;
+    // One atan2 for the difference (tan(b - a) = h (tb - ta) / (h^2 + (ta -
+    // delta)(tb - delta)); the numerator is positive, so atan2 lands in (0,
+    // pi)): every pdf needs it, and only sample() needs theta_a itself.
+    s.angle = std::atan2(s.dist * (tb - ta), s.dist * s.dist + (ta - s.delta) * (tb - s.delta));
+    if (!(s.angle > 0.f)) return std::nullopt;
     return s;
   }
+  float theta_a() const { return std::atan2(ta - delta, dist); }
   float sample(float u) const {
-    const float t = delta + dist * std::tan(theta_a + u * (theta_b - theta_a));
+    const float t = delta + dist * std::tan(theta_a() + u * angle);
     return std::fmin(std::fmax(t, ta), tb);
   }
   float pdf(float t) const {
     if (t < ta || t > tb) return 0.f;
     const float x = t - delta;
-    return dist / ((theta_b - theta_a) * (dist * dist + x * x));
+    return dist / (angle * (dist * dist + x * x));
   }
 };
 

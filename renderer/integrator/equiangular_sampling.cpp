@@ -36,6 +36,9 @@ std::optional<EquiangularSegment> segment_toward(const Light& light, const Ray& 
 std::optional<EquiangularSegment> eligible_segment(const Light& light, const Ray& ray,
                                                    const std::vector<MajorantSpan>& spans,
                                                    bool clip_to_cone) {
+  // Homogeneous rays: every span, no reach rule (and no copy: this runs for
+  // every medium vertex and every MIS weight).
+  if (!crosses_grid(spans)) return segment_toward(light, ray, spans, clip_to_cone);
   thread_local std::vector<MajorantSpan> near;
   spans_within_depth(spans, near);
   auto seg = segment_toward(light, ray, near, clip_to_cone);

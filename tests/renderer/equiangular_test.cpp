@@ -23,8 +23,9 @@ double equiangular_chi2_p(const EquiangularSegment& seg, int bins, int n, uint64
     observed[size_t(b)] += 1;
   }
   auto cdf = [&](double t) {
-    return (std::atan2(t - seg.delta, seg.dist) - seg.theta_a) /
-           (double(seg.theta_b) - seg.theta_a);
+    const double theta_a = std::atan2(double(seg.ta) - seg.delta, double(seg.dist));
+    const double theta_b = std::atan2(double(seg.tb) - seg.delta, double(seg.dist));
+    return (std::atan2(t - seg.delta, double(seg.dist)) - theta_a) / (theta_b - theta_a);
   };
   double chi2 = 0;
   for (int b = 0; b < bins; ++b) {
