@@ -2,10 +2,15 @@
 // and turning it on changes noise, not the expected image (Z-test).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <utility>
+#include <vector>
+
 #include <boost/math/special_functions/gamma.hpp>
 
 #include "equiangular_stats.h"
 #include "renderer/integrator/equiangular.h"
+#include "renderer/integrator/equiangular_reach.h"
 #include "renderer/sampling/sampler.h"
 #include "scene_fixtures.h"
 
@@ -97,6 +102,33 @@ TEST(Equiangular, AimsOnlyAtLightsItCanAimAtWithoutBias) {
   // Picks wasted on the sky and the quad show as noise: measured 0.30 of
   // equiangular off's standard error, 0.39 when it picked among all lights.
   EXPECT_LT(noise.se_on / noise.se_off, 0.35);
+}
+
+TEST(Equiangular, OneAtan2GivesTheAngleTheSegmentSubtends) {
+  // The difference by one atan2 against the two angles in double, on
+  // segments before, across and after the point nearest the light.
+  const Vec3 light{0.3f, 0.7f, 0.f};
+  for (const auto& [ta, tb] : {std::pair{-3.f, -1.f}, {-0.5f, 2.f}, {0.1f, 0.2f}, {1.f, 40.f}}) {
+    const auto seg = EquiangularSegment::make({0, 0, 0}, {1, 0, 0}, light, ta, tb);
+    ASSERT_TRUE(seg);
+    const double expected = std::atan2(tb - 0.3, 0.7) - std::atan2(ta - 0.3, 0.7);
+    EXPECT_NEAR(seg->angle, expected, 1e-6 * expected) << ta << ", " << tb;
+  }
+}
+
+TEST(Equiangular, GridSegmentsMustSubtendTheLeastAngle) {
+  // A thin grid span (well within reach) seen from a light 1 away: wide
+  // enough it takes equiangular sampling, a short piece of it does not;
+  // the same piece through a homogeneous medium always does.
+  const Vec3 light{0.f, 1.f, 0.f};
+  auto passes = [&](float ta, float tb, bool analytic) {
+    const std::vector<MajorantSpan> spans{{ta, tb, 0.1f, analytic}};
+    const auto seg = EquiangularSegment::make({0, 0, 0}, {1, 0, 0}, light, ta, tb);
+    return seg && light_within_reach(*seg, spans);
+  };
+  EXPECT_TRUE(passes(-1.f, 1.f, false));   // 90 degrees
+  EXPECT_FALSE(passes(0.f, 0.5f, false));  // 27 degrees
+  EXPECT_TRUE(passes(0.f, 0.5f, true));
 }
 
 }  // namespace
