@@ -34,6 +34,7 @@ struct Config {
   bool equiangular_in_cone = true;
   std::optional<LightSelection> light_selection;  // default: the scene's
   std::optional<bool> light_vertices{};           // default: RenderOptions' automatic choice
+  bool sun_shafts = true;
 };
 
 struct Measurement {
@@ -65,6 +66,7 @@ std::vector<Measurement> measure_all(const SceneDescription& desc,
       o.equiangular = configs[i].equiangular;
       o.equiangular_in_cone = configs[i].equiangular_in_cone;
       o.light_vertices = configs[i].light_vertices;
+      o.sun_shafts = configs[i].sun_shafts;
       const RenderResult res = render(scenes[i], o);
       const double e = relative_mse(res.image, reference);
       ms[i].fireflies += firefly_fraction(res.image);
@@ -177,6 +179,7 @@ int main(int argc, char** argv) {
                      true,
                      false,
                      LightSelection::PowerUniform,
+                     false,
                      false};
   const Config no_lv{"light-vertex connections off", true, true, true, std::nullopt, false};
   const Config lv_on{"light-vertex connections on", true, true, true, std::nullopt, true};
@@ -208,8 +211,11 @@ int main(int argc, char** argv) {
   if (wanted(only, "night-room"))
     run_scene("night-room (fog, sun through a window, three candles)",
               scenes / "night-room/scene.json",
-              {{"default", true, true, true, std::nullopt}, no_lv, start}, {200, 125, 1024, 64, 4},
-              quick);
+              {{"default", true, true, true, std::nullopt},
+               no_lv,
+               {"sun shafts off", true, true, true, std::nullopt, std::nullopt, false},
+               start},
+              {200, 125, 1024, 64, 4}, quick);
   if (wanted(only, "lantern")) {
     const std::filesystem::path lantern = write_lantern_scene();
     run_scene("thin cloud lantern (generated cloud VDB, point light inside)", lantern,

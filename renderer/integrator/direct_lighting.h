@@ -22,6 +22,9 @@ Rgb shadow_transmittance(const Scene& scene, const Ray& shadow, Sampler& sampler
 struct NoDeltaWeight {
   float operator()(size_t, const Vec3&) const { return 1.f; }
 };
+struct NoShaft {
+  float operator()(size_t) const { return 0.f; }
+};
 
 struct DirectSample {
   Rgb value;    // contribution, before the path throughput
@@ -34,10 +37,13 @@ struct DirectSample {
 // `eval(wi)` returns {f * |cos| (or phase), its diffuse part, scattering pdf};
 // `delta_weight(light, light point)` is the MIS weight of this strategy for delta (and sphere)
 // lights: 1 unless equiangular sampling or light-vertex connections compete.
-template <bool kMedia, typename Eval, typename DeltaWeight = NoDeltaWeight>
+// `shaft(light)` is sun shafts' density over this strategy's, without the
+// light choice and direction pdfs (sun_shaft.h): 0 where they do not compete.
+template <bool kMedia, typename Eval, typename DeltaWeight = NoDeltaWeight,
+          typename Shaft = NoShaft>
 DirectSample sample_direct(const Scene& scene, const ShadingPoint& at, const Vec3& offset_normal,
                            float time, Sampler& sampler, uint32_t& rays, const Eval& eval,
-                           const DeltaWeight& delta_weight = {}) {
+                           const DeltaWeight& delta_weight = {}, const Shaft& shaft = {}) {
   DirectSample out;
   const Vec3& p = at.p;
   float pmf = 0.f, u_rest = 0.f;
@@ -67,8 +73,14 @@ DirectSample sample_direct(const Scene& scene, const ShadingPoint& at, const Vec
   const Rgb tr = shadow_transmittance<kMedia>(scene, Ray{origin, dir, tmax, time}, sampler, rays);
   if (tr.is_black()) return out;
   const float light_pdf = pmf * ls->pdf;
-  const float w = ls->is_delta ? delta_weight(li, p + ls->wi * ls->distance)
-                               : power_heuristic(light_pdf, scatter_pdf);
+  float w = ls->is_delta ? delta_weight(li, p + ls->wi * ls->distance)
+                         : power_heuristic(light_pdf, scatter_pdf);
+  if (const float k = shaft(li); k > 0.f) {
+    // Relative to this strategy's density: the shaft's k / pmf, the phase
+    // ray's scatter_pdf / light_pdf (none toward a delta sun).
+    const float rs = k / pmf, rp = ls->is_delta ? 0.f : scatter_pdf / light_pdf;
+    w = 1.f / (1.f + rs * rs + rp * rp);
+  }
   const Rgb light = ls->radiance * tr * (w / light_pdf);
   out.value = f * light;
   out.diffuse = f_diffuse * light;

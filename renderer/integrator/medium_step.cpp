@@ -8,6 +8,7 @@
 #include "renderer/integrator/direct_lighting.h"
 #include "renderer/integrator/equiangular_sampling.h"
 #include "renderer/integrator/light_vertex_connection.h"
+#include "renderer/integrator/sun_shaft.h"
 #include "renderer/integrator/volume_tracking.h"
 #include "renderer/media/henyey_greenstein.h"
 
@@ -32,14 +33,28 @@ void add_equiangular(PathContext& ctx, const std::vector<MajorantSpan>& spans, i
   }
 }
 
+// Adds the sun-shaft estimate along ray (sun_shaft.h), as add_equiangular.
+void add_sun_shaft(PathContext& ctx, const std::vector<MajorantSpan>& spans, int depth,
+                   const PathState& path) {
+  const SunShaftSample s =
+      sample_sun_shaft(ctx.scene, path.ray, spans, path.throughput, ctx.sampler, ctx.result.rays);
+  if (s.value.is_black()) return;
+  const int group = ctx.scene.light_group[s.light];
+  if (depth == 0 && ctx.options.record) {
+    ctx.add_as(FirstEvent::Volume, false, group, s.value);
+  } else {
+    ctx.add(s.value, depth + 1, group);
+  }
+}
+
 // Next-event estimation from the point at distance t along path.ray, where
 // the path scattered. Delta lights are weighted against equiangular sampling
 // when it ran on this ray, and against light-vertex connections from the
 // vertex that made the ray. Returns the light choice's sums, for the MIS
 // weight of the phase ray that leaves this point.
 LightSampler::Sums add_direct_light(PathContext& ctx, const std::vector<MajorantSpan>& spans,
-                                    float t, const HgPhase& phase, bool equiangular, int depth,
-                                    const PathState& path) {
+                                    float t, const HgPhase& phase, bool equiangular,
+                                    float shaft_ratio, int depth, const PathState& path) {
   const Scene& scene = ctx.scene;
   const Ray& ray = path.ray;
   const Vec3 p = ray.origin + ray.dir * t;
@@ -63,9 +78,10 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const std::vector<Majorant
     }
     return w * (1.f - ctx.light_vertex_share(path, p, Vec3(0.f), Vec3(0.f), li, light_point));
   };
+  auto shaft = [&](size_t li) { return shaft_ratio * shaft_light_pmf(scene, li); };
   const DirectSample ds =
       sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
-                          ctx.result.rays, eval_phase, delta_weight);
+                          ctx.result.rays, eval_phase, delta_weight, shaft);
   if (!ds.value.is_black())
     ctx.add(path.throughput * ds.value, depth + 1, scene.light_group[ds.light]);
   return ds.selection;
@@ -87,11 +103,14 @@ void connect_from_medium(PathContext& ctx, const Vec3& p, const HgPhase& phase, 
 
 // At a real scattering collision: light from there, then the next ray.
 void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const FreeFlight& flight,
-             bool equiangular, int depth, PathState& path) {
+             bool equiangular, bool sun_shafts, int depth, PathState& path) {
   const HgPhase phase{flight.g};
+  const float shaft_ratio =
+      sun_shafts ? shaft_to_tracking_ratio(ctx.scene, spans, path.ray, flight.t) : 0.f;
   std::optional<LightSampler::Sums> selection;
   if (ctx.have_lights()) {
-    selection = add_direct_light(ctx, spans, flight.t, phase, equiangular, depth, path);
+    selection =
+        add_direct_light(ctx, spans, flight.t, phase, equiangular, shaft_ratio, depth, path);
   } else {
     // Keep the sample dimensions aligned whether or not NEE ran.
     ctx.sampler.next1();
@@ -105,6 +124,7 @@ void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const Fre
   path.prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
   path.prev_vertex = ShadingPoint{p, Vec3(0.f)};
   path.prev_selection = selection;
+  path.prev_shaft_ratio = shaft_ratio;
   path.count_emission_fully = false;
   path.ray = Ray{p, wi, std::numeric_limits<float>::infinity(), path.ray.time};
 }
@@ -142,13 +162,16 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
   const bool equiangular = options.equiangular && !spans.empty() &&
                            scene.light_sampler.has_aimable() && depth < options.max_depth;
   if (equiangular) add_equiangular(ctx, spans, depth, path);
+  const bool sun_shafts =
+      options.sun_shafts && depth < options.max_depth && sun_shafts_apply(scene, spans);
+  if (sun_shafts) add_sun_shaft(ctx, spans, depth, path);
 
   const FreeFlight flight = sample_free_flight_with_emission(ctx, spans, tmax, depth, path);
   if (flight.event == FlightEvent::Absorbed) return MediumEvent::PathEnded;
   if (flight.event == FlightEvent::Escaped) return MediumEvent::None;
   if (depth >= options.max_depth) return MediumEvent::PathEnded;
   if (depth == 0 && options.record) options.record->set_first_volume();
-  scatter(ctx, spans, flight, equiangular, depth, path);
+  scatter(ctx, spans, flight, equiangular, sun_shafts, depth, path);
   return MediumEvent::Scattered;
 }
 

@@ -19,6 +19,10 @@ struct PathState {
   ShadingPoint prev_vertex{};
   // The light choice's sums there, when next-event estimation ran at it.
   std::optional<LightSampler::Sums> prev_selection{};
+  // Where prev_vertex is a medium vertex on a ray that sun shafts sampled:
+  // their density there over delta tracking's (shaft_to_tracking_ratio), for
+  // the MIS weight of a phase ray that reaches a sun. 0 otherwise.
+  float prev_shaft_ratio = 0.f;
 };
 
 struct PathContext {

@@ -10,6 +10,7 @@
 #include "renderer/integrator/light_vertex_connection.h"
 #include "renderer/integrator/medium_step.h"
 #include "renderer/integrator/path_context.h"
+#include "renderer/integrator/sun_shaft.h"
 #include "renderer/math/frame.h"
 
 namespace vesper {
@@ -33,6 +34,13 @@ void add_light_reached(PathContext& ctx, size_t li, float distance, int depth,
                           : scene.light_sampler.pmf(path.prev_vertex, li);
     const float light_pdf = pmf * light.pdf(path.ray.dir, distance);
     w = power_heuristic(path.prev_scatter_pdf, light_pdf);
+    // A sun that sun shafts sampled from the ray that made the vertex.
+    if (path.prev_shaft_ratio > 0.f && light.is_sun() && path.prev_scatter_pdf > 0.f) {
+      const float shaft_pdf =
+          path.prev_shaft_ratio * shaft_light_pmf(scene, li) * light.pdf(path.ray.dir, distance);
+      const float rl = light_pdf / path.prev_scatter_pdf, rs = shaft_pdf / path.prev_scatter_pdf;
+      w = 1.f / (1.f + rl * rl + rs * rs);
+    }
   }
   ctx.add(path.throughput * le * w, depth, scene.light_group[li]);
 }
@@ -140,6 +148,7 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   path.prev_scatter_pdf = bs->pdf;
   path.prev_vertex = at;
   path.prev_selection = selection;
+  path.prev_shaft_ratio = 0.f;
 
   const Vec3 wi_world = normalize(frame.to_world(bs->wi));
   const Vec3 n_off = dot(wi_world, hit.n) >= 0.f ? hit.n : -hit.n;

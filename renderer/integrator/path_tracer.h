@@ -29,6 +29,9 @@ struct PathTracerOptions {
   bool equiangular = true;
   // ... aimed only at the part of a ray inside a spot light's cone.
   bool equiangular_in_cone = true;
+  // Sun shafts: next-event estimation toward suns from a distance sampled
+  // on every ray through homogeneous media (sun_shaft.h).
+  bool sun_shafts = true;
   // Connect scattering vertices to a light vertex traced from point and spot
   // lights (light_vertex.h), in scenes with media.
   bool light_vertices = true;

@@ -56,6 +56,13 @@ class Light {
   std::optional<LightBounds> bounds() const {
     return std::visit([](const auto& l) { return l.bounds(); }, light_);
   }
+  // A light at infinity in one direction (or a small cone of them): sun
+  // shafts sample distances toward it (sun_shaft.h).
+  bool is_sun() const { return std::holds_alternative<SunLight>(light_); }
+  bool is_delta_sun() const {
+    const auto* sun = std::get_if<SunLight>(&light_);
+    return sun && sun->is_delta();
+  }
 
  private:
   LightTypes light_;

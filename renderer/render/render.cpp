@@ -35,6 +35,7 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   pt.want_aovs = layout.albedo >= 0 || layout.normal >= 0 || layout.depth >= 0;
   pt.equiangular = options.equiangular;
   pt.equiangular_in_cone = options.equiangular_in_cone;
+  pt.sun_shafts = options.sun_shafts;
   pt.light_vertices = options.light_vertices.value_or(light_vertices_pay_off(scene));
   pt.want_camera_transmittance = layout.need_transmittance;
   const std::optional<double> clamp = options.clamp ? options.clamp : scene.render.clamp;

@@ -61,6 +61,7 @@ struct RenderOptions {
   // distance sampling); off only to measure it (bench, tests).
   bool equiangular = true;
   bool equiangular_in_cone = true;  // ... only over the part of a ray inside a spot light's cone
+  bool sun_shafts = true;           // sun shafts (sun_shaft.h); off only to measure them
   // Connections to a vertex traced from point/spot lights (media only);
   // unset: where they pay off (light_vertices_pay_off, light_vertex.h).
   std::optional<bool> light_vertices;

@@ -41,6 +41,7 @@ struct Scene {
   std::vector<int> light_group;  // parallel to lights: index into group_names
   int emission_group = 0;
   std::vector<uint32_t> infinite_lights;  // lights a ray that escapes can hit
+  std::vector<uint32_t> suns;             // sun lights, with or without an angle (sun_shaft.h)
   LightSampler light_sampler;
   std::unique_ptr<Accel> accel;
   MediaSet media;         // empty: no medium code runs at all

@@ -146,6 +146,7 @@ void add_lights(const SceneDescription& desc, const RenderSpace& space, Scene& s
       geometry.quads.push_back(*rl.surface);
     }
     if (rl.at_infinity) scene.infinite_lights.push_back(index);
+    if (scene.lights.back().is_sun()) scene.suns.push_back(index);
     scene.light_groups.push_back(ld.group);
   }
 }
