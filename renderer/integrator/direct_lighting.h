@@ -75,11 +75,11 @@ DirectSample sample_direct(const Scene& scene, const ShadingPoint& at, const Vec
   const float light_pdf = pmf * ls->pdf;
   float w = ls->is_delta ? delta_weight(li, p + ls->wi * ls->distance)
                          : power_heuristic(light_pdf, scatter_pdf);
+  // A sun that sun shafts also sampled: no other strategy competes for it,
+  // so the three-way weight replaces delta_weight's.
   if (const float k = shaft(li); k > 0.f) {
-    // Relative to this strategy's density: the shaft's k / pmf, the phase
-    // ray's scatter_pdf / light_pdf (none toward a delta sun).
-    const float rs = k / pmf, rp = ls->is_delta ? 0.f : scatter_pdf / light_pdf;
-    w = 1.f / (1.f + rs * rs + rp * rp);
+    const float dir_pdf = ls->is_delta ? 1.f : ls->pdf;
+    w = power_heuristic(pmf * dir_pdf, ls->is_delta ? 0.f : scatter_pdf, k * dir_pdf);
   }
   const Rgb light = ls->radiance * tr * (w / light_pdf);
   out.value = f * light;

@@ -28,12 +28,6 @@ inline constexpr double kEquiangularReach = 2.0;
 // there the same rule cost fog-shafts 2.4x.
 inline constexpr float kEquiangularMinGridAngle = 1.0f;
 
-inline bool crosses_grid(const std::vector<MajorantSpan>& spans) {
-  for (const MajorantSpan& s : spans)
-    if (!s.analytic) return true;
-  return false;
-}
-
 // True unless the ray crosses a grid medium and the segment subtends less
 // than kEquiangularMinGridAngle at the light, or the light is out of reach:
 // its optical distance from the segment's start, along the ray to the point
@@ -75,8 +69,7 @@ inline constexpr double kEquiangularDepth = 4.0;
 inline void spans_within_depth(const std::vector<MajorantSpan>& spans,
                                std::vector<MajorantSpan>& out) {
   out.clear();
-  bool grid = false;
-  for (const MajorantSpan& s : spans) grid = grid || !s.analytic;
+  const bool grid = crosses_grid(spans);
   double optical = 0;
   for (MajorantSpan s : spans) {
     const double span_depth = double(s.sigma_maj) * (s.t1 - s.t0);

@@ -34,10 +34,10 @@ void add_equiangular(PathContext& ctx, const std::vector<MajorantSpan>& spans, i
 }
 
 // Adds the sun-shaft estimate along ray (sun_shaft.h), as add_equiangular.
-void add_sun_shaft(PathContext& ctx, const std::vector<MajorantSpan>& spans, int depth,
-                   const PathState& path) {
-  const SunShaftSample s =
-      sample_sun_shaft(ctx.scene, path.ray, spans, path.throughput, ctx.sampler, ctx.result.rays);
+void add_sun_shaft(PathContext& ctx, const std::vector<MajorantSpan>& spans, double shaft_depth,
+                   int depth, const PathState& path) {
+  const SunShaftSample s = sample_sun_shaft(ctx.scene, path.ray, spans, shaft_depth,
+                                            path.throughput, ctx.sampler, ctx.result.rays);
   if (s.value.is_black()) return;
   const int group = ctx.scene.light_group[s.light];
   if (depth == 0 && ctx.options.record) {
@@ -103,10 +103,11 @@ void connect_from_medium(PathContext& ctx, const Vec3& p, const HgPhase& phase, 
 
 // At a real scattering collision: light from there, then the next ray.
 void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const FreeFlight& flight,
-             bool equiangular, bool sun_shafts, int depth, PathState& path) {
+             bool equiangular, std::optional<double> shaft_depth, int depth, PathState& path) {
   const HgPhase phase{flight.g};
-  const float shaft_ratio =
-      sun_shafts ? shaft_to_tracking_ratio(ctx.scene, spans, path.ray, flight.t) : 0.f;
+  const float shaft_ratio = shaft_depth ? shaft_to_tracking_ratio(ctx.scene.media, spans, path.ray,
+                                                                  *shaft_depth, flight.t)
+                                        : 0.f;
   std::optional<LightSampler::Sums> selection;
   if (ctx.have_lights()) {
     selection =
@@ -162,16 +163,19 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
   const bool equiangular = options.equiangular && !spans.empty() &&
                            scene.light_sampler.has_aimable() && depth < options.max_depth;
   if (equiangular) add_equiangular(ctx, spans, depth, path);
-  const bool sun_shafts =
-      options.sun_shafts && depth < options.max_depth && sun_shafts_apply(scene, spans);
-  if (sun_shafts) add_sun_shaft(ctx, spans, depth, path);
+  // Sun shafts: the spans' optical depth, once for the sample and the weights.
+  std::optional<double> shaft_depth;
+  if (options.sun_shafts && depth < options.max_depth && sun_shafts_apply(scene, spans)) {
+    shaft_depth = shaft_optical_depth(scene.media, spans, path.ray);
+    add_sun_shaft(ctx, spans, *shaft_depth, depth, path);
+  }
 
   const FreeFlight flight = sample_free_flight_with_emission(ctx, spans, tmax, depth, path);
   if (flight.event == FlightEvent::Absorbed) return MediumEvent::PathEnded;
   if (flight.event == FlightEvent::Escaped) return MediumEvent::None;
   if (depth >= options.max_depth) return MediumEvent::PathEnded;
   if (depth == 0 && options.record) options.record->set_first_volume();
-  scatter(ctx, spans, flight, equiangular, sun_shafts, depth, path);
+  scatter(ctx, spans, flight, equiangular, shaft_depth, depth, path);
   return MediumEvent::Scattered;
 }
 

@@ -35,11 +35,10 @@ void add_light_reached(PathContext& ctx, size_t li, float distance, int depth,
     const float light_pdf = pmf * light.pdf(path.ray.dir, distance);
     w = power_heuristic(path.prev_scatter_pdf, light_pdf);
     // A sun that sun shafts sampled from the ray that made the vertex.
-    if (path.prev_shaft_ratio > 0.f && light.is_sun() && path.prev_scatter_pdf > 0.f) {
+    if (path.prev_shaft_ratio > 0.f && light.is_sun()) {
       const float shaft_pdf =
           path.prev_shaft_ratio * shaft_light_pmf(scene, li) * light.pdf(path.ray.dir, distance);
-      const float rl = light_pdf / path.prev_scatter_pdf, rs = shaft_pdf / path.prev_scatter_pdf;
-      w = 1.f / (1.f + rl * rl + rs * rs);
+      w = power_heuristic(path.prev_scatter_pdf, light_pdf, shaft_pdf);
     }
   }
   ctx.add(path.throughput * le * w, depth, scene.light_group[li]);

@@ -23,82 +23,77 @@ double span_depth(float sigma_t, const MajorantSpan& s) {
                           : double(sigma_t) * (s.t1 - s.t0);
 }
 
-size_t sun_count(const Scene& scene) { return scene.suns.size(); }
-
 }  // namespace
+
+double shaft_optical_depth(const MediaSet& media, const std::vector<MajorantSpan>& spans,
+                           const Ray& ray) {
+  double depth = 0;
+  for (const MajorantSpan& s : spans) depth += span_depth(span_sigma_t(media, s, ray), s);
+  return depth;
+}
 
 std::optional<float> sample_shaft_distance(const MediaSet& media,
                                            const std::vector<MajorantSpan>& spans, const Ray& ray,
-                                           float u) {
-  double total = 0;
-  for (const MajorantSpan& s : spans) total += span_depth(span_sigma_t(media, s, ray), s);
-  if (!(total > 0)) return std::nullopt;
+                                           double depth, float u) {
+  if (!(depth > 0)) return std::nullopt;
   // The optical depth of the collision, from the exponential's CDF
-  // restricted to [0, total).
-  const double target = -std::log1p(-double(u) * -std::expm1(-total));
+  // restricted to [0, depth).
+  const double target = -std::log1p(-double(u) * -std::expm1(-depth));
   double tau = 0;
   for (const MajorantSpan& s : spans) {
     const float sigma = span_sigma_t(media, s, ray);
-    const double depth = span_depth(sigma, s);
-    if (target < tau + depth && sigma > 0.f)
+    const double span = span_depth(sigma, s);
+    if (target < tau + span && sigma > 0.f)
       return std::fmin(std::fmax(s.t0 + float((target - tau) / sigma), s.t0), s.t1);
-    tau += depth;
+    tau += span;
   }
   return std::nullopt;  // rounding past the last span
 }
 
 float shaft_distance_pdf(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                         const Ray& ray, float t) {
-  double total = 0, tau_t = -1;
-  float sigma_at_t = 0.f;
+                         const Ray& ray, double depth, float t) {
+  if (!(depth > 0)) return 0.f;
+  double tau = 0;
   for (const MajorantSpan& s : spans) {
+    if (t < s.t0) break;
     const float sigma = span_sigma_t(media, s, ray);
-    if (tau_t < 0 && t >= s.t0 && t <= s.t1) {
-      tau_t = total + double(sigma) * (t - s.t0);
-      sigma_at_t = sigma;
-    }
-    total += span_depth(sigma, s);
+    if (t <= s.t1)
+      return float(sigma * std::exp(-(tau + double(sigma) * (t - s.t0))) / -std::expm1(-depth));
+    tau += span_depth(sigma, s);
   }
-  if (tau_t < 0 || !(total > 0)) return 0.f;
-  return float(sigma_at_t * std::exp(-tau_t) / -std::expm1(-total));
+  return 0.f;
 }
 
 bool sun_shafts_apply(const Scene& scene, const std::vector<MajorantSpan>& spans) {
-  if (spans.empty() || sun_count(scene) == 0) return false;
-  for (const MajorantSpan& s : spans)
-    if (!s.analytic) return false;
-  return true;
+  return !spans.empty() && !scene.suns.empty() && !crosses_grid(spans);
 }
 
 float shaft_light_pmf(const Scene& scene, size_t li) {
-  if (!scene.lights[li].is_sun()) return 0.f;
-  return 1.f / float(sun_count(scene));
+  return scene.lights[li].is_sun() ? 1.f / float(scene.suns.size()) : 0.f;
 }
 
-float shaft_to_tracking_ratio(const Scene& scene, const std::vector<MajorantSpan>& spans,
-                              const Ray& ray, float t) {
-  if (!sun_shafts_apply(scene, spans)) return 0.f;
-  const float p_d = distance_sampling_proxy_pdf(scene.media, spans, ray, t);
-  if (!(p_d > 0.f)) return 0.f;
-  return shaft_distance_pdf(scene.media, spans, ray, t) / p_d;
+float shaft_to_tracking_ratio(const MediaSet& media, const std::vector<MajorantSpan>& spans,
+                              const Ray& ray, double depth, float t) {
+  const float p_d = distance_sampling_proxy_pdf(media, spans, ray, t);
+  return p_d > 0.f ? shaft_distance_pdf(media, spans, ray, depth, t) / p_d : 0.f;
 }
 
 SunShaftSample sample_sun_shaft(const Scene& scene, const Ray& ray,
-                                const std::vector<MajorantSpan>& spans, const Rgb& throughput,
-                                Sampler& sampler, uint32_t& rays) {
+                                const std::vector<MajorantSpan>& spans, double depth,
+                                const Rgb& throughput, Sampler& sampler, uint32_t& rays) {
   SunShaftSample out;
   // Only the numbers this scene needs: each slot taken here moves every
   // later choice of the path off the low-discrepancy slots (sampler.h),
   // which measurably cost more noise than the shaft saved with a delta sun.
-  const size_t n = sun_count(scene);
+  const size_t n = scene.suns.size();
   if (n == 0) return out;
   const float u_t = sampler.next1();
   const float u_pick = n > 1 ? sampler.next1() : 0.f;
   const float u_g = scene.media.media().size() > 1 ? sampler.next1() : 0.5f;
   out.light = scene.suns[std::min(n - 1, size_t(u_pick * float(n)))];
-  const std::optional<float> t = sample_shaft_distance(scene.media, spans, ray, u_t);
+  const std::optional<float> t = sample_shaft_distance(scene.media, spans, ray, depth, u_t);
   if (!t) return out;
-  const float p_t = shaft_distance_pdf(scene.media, spans, ray, *t);
+  const float p_t = shaft_distance_pdf(scene.media, spans, ray, depth, *t);
   const Vec3 x = ray.origin + ray.dir * *t;
   const MediumCoefficients c = scene.media.coefficients(x, ray.time);
   const Light& sun = scene.lights[out.light];
@@ -112,14 +107,16 @@ SunShaftSample sample_sun_shaft(const Scene& scene, const Ray& ray,
   const Rgb tr_sun = shadow_transmittance<true>(
       scene, Ray{x, ls->wi, std::numeric_limits<float>::infinity(), ray.time}, sampler, rays);
   if (tr.is_black() || tr_sun.is_black()) return out;
-  // The three strategies' densities (sun_shaft.h).
+  // The three strategies' densities over delta tracking's (sun_shaft.h),
+  // as next-event estimation and the escaping phase ray weigh them.
   const float dir_pdf = ls->is_delta ? 1.f : ls->pdf;
-  const float p_d = distance_sampling_proxy_pdf(scene.media, spans, ray, *t);
-  const float a = p_d * scene.light_sampler.pmf(ShadingPoint{x, Vec3(0.f)}, out.light) * dir_pdf;
-  const float b = ls->is_delta ? 0.f : p_d * phase.pdf(-ray.dir, ls->wi);
-  const float cs = p_t * (1.f / float(n)) * dir_pdf;
-  const float w = 1.f / (1.f + (a / cs) * (a / cs) + (b / cs) * (b / cs));
-  out.value = throughput * tr * c.sigma_s * ls->radiance * tr_sun * (f * w / cs);
+  const float pmf_shaft = 1.f / float(n);
+  const float shaft = shaft_to_tracking_ratio(scene.media, spans, ray, depth, *t) * pmf_shaft;
+  const float w = power_heuristic(
+      shaft * dir_pdf, scene.light_sampler.pmf(ShadingPoint{x, Vec3(0.f)}, out.light) * dir_pdf,
+      ls->is_delta ? 0.f : phase.pdf(-ray.dir, ls->wi));
+  out.value =
+      throughput * tr * c.sigma_s * ls->radiance * tr_sun * (f * w / (p_t * pmf_shaft * dir_pdf));
   return out;
 }
 

@@ -30,14 +30,19 @@
 
 namespace vesper {
 
-// Distance sampling conditioned on a collision within `spans` (all
-// analytic); nullopt when they hold no optical depth.
+// The optical depth of `spans` (all analytic) at the RGB-average sigma_t
+// delta tracking's proxy takes (volume_tracking.h); once per ray, for the
+// functions below.
+double shaft_optical_depth(const MediaSet& media, const std::vector<MajorantSpan>& spans,
+                           const Ray& ray);
+// Distance sampling conditioned on a collision within `spans`, of optical
+// depth `depth`; nullopt when it is 0.
 std::optional<float> sample_shaft_distance(const MediaSet& media,
                                            const std::vector<MajorantSpan>& spans, const Ray& ray,
-                                           float u);
+                                           double depth, float u);
 // Its density at t (0 outside the spans).
 float shaft_distance_pdf(const MediaSet& media, const std::vector<MajorantSpan>& spans,
-                         const Ray& ray, float t);
+                         const Ray& ray, double depth, float t);
 
 // True when sun shafts run on a ray with these spans: the scene has a sun
 // and the spans are homogeneous (and there are some).
@@ -46,21 +51,21 @@ bool sun_shafts_apply(const Scene& scene, const std::vector<MajorantSpan>& spans
 // suns; 0 for any other light).
 float shaft_light_pmf(const Scene& scene, size_t li);
 
-// p_t(t) / p_d(t) at a distance t delta tracking sampled on `ray`: times
-// shaft_light_pmf, what the other two strategies' weights need of this one
-// (c / (p_d p_dir)). 0 when sun shafts do not run on the ray.
-float shaft_to_tracking_ratio(const Scene& scene, const std::vector<MajorantSpan>& spans,
-                              const Ray& ray, float t);
+// p_t(t) / p_d(t) at distance t on a ray where sun shafts run: times
+// shaft_light_pmf and p_dir, the shaft's density over delta tracking's,
+// which is all the three strategies' weights need (each divides out p_d).
+float shaft_to_tracking_ratio(const MediaSet& media, const std::vector<MajorantSpan>& spans,
+                              const Ray& ray, double depth, float t);
 
 struct SunShaftSample {
   Rgb value;  // the weighted estimate, path throughput included
   size_t light = 0;
 };
 
-// One shaft sample on `ray` (spans: sun_shafts_apply holds), with the path
-// throughput before the ray and the phase function of the medium.
+// One shaft sample on `ray` (spans: sun_shafts_apply holds; depth: their
+// shaft_optical_depth), with the path throughput before the ray.
 SunShaftSample sample_sun_shaft(const Scene& scene, const Ray& ray,
-                                const std::vector<MajorantSpan>& spans, const Rgb& throughput,
-                                Sampler& sampler, uint32_t& rays);
+                                const std::vector<MajorantSpan>& spans, double depth,
+                                const Rgb& throughput, Sampler& sampler, uint32_t& rays);
 
 }  // namespace vesper

@@ -21,4 +21,9 @@ inline float power_heuristic(float pdf_a, float pdf_b) {
   const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
   return a + b > 0.f ? a / (a + b) : 0.f;
 }
+// pdf_a's share when three strategies make the same path.
+inline float power_heuristic(float pdf_a, float pdf_b, float pdf_c) {
+  const float a = pdf_a * pdf_a, s = a + pdf_b * pdf_b + pdf_c * pdf_c;
+  return s > 0.f ? a / s : 0.f;
+}
 }  // namespace vesper

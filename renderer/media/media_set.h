@@ -13,6 +13,13 @@ struct MajorantSpan {
   bool analytic = false;  // only homogeneous media: sigma_t is constant in the span
 };
 
+// Whether a ray's spans cross a grid medium (some span is not analytic).
+inline bool crosses_grid(const std::vector<MajorantSpan>& spans) {
+  for (const MajorantSpan& s : spans)
+    if (!s.analytic) return true;
+  return false;
+}
+
 struct MediumCoefficients {
   Rgb sigma_a, sigma_s;
 };
