@@ -13,20 +13,23 @@
 // unity whatever that proxy is; the equiangular estimate's transmittance to t
 // is an unbiased ratio-tracking estimate, independent of the rest of it.
 // Where only homogeneous media are crossed the proxy is the exact density.
+#include <optional>
 #include <vector>
 
 #include "renderer/core/ray.h"
+#include "renderer/lights/light_bounds.h"
 #include "renderer/media/media_set.h"
 #include "renderer/sampling/sampler.h"
 #include "renderer/scene/scene.h"
 
 namespace vesper {
 
-// Density (per unit t) with which sample_equiangular picks t toward `light`
-// over the spans' extent (with clip_to_cone: the part of it inside a spot
-// light's cone); 0 for lights that are not a single point.
-float equiangular_pdf(const Light& light, const Ray& ray, const std::vector<MajorantSpan>& spans,
-                      float t, bool clip_to_cone);
+// Density (per unit t) with which sample_equiangular picks t toward the
+// light of these bounds (LightSampler::bounds) over the spans' extent (with
+// clip_to_cone: the part of it inside a spot light's cone); 0 for lights
+// that are not a single point.
+float equiangular_pdf(const std::optional<LightBounds>& light, const Ray& ray,
+                      const std::vector<MajorantSpan>& spans, float t, bool clip_to_cone);
 
 struct EquiangularSample {
   Rgb value;  // path throughput included; black when nothing was added

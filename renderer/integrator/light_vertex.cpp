@@ -76,7 +76,7 @@ float equiangular_density(const Scene& scene, const Vec3& x, const Vec3& w_x, fl
   auto& spans = scratch_spans();
   scene.media.majorant_spans(ray, ray.tmax, spans);
   if (spans.empty()) return 0.f;
-  return equiangular_pdf(scene.lights[light], ray, spans, dist, clip_to_cone) *
+  return equiangular_pdf(scene.light_sampler.bounds()[light], ray, spans, dist, clip_to_cone) *
          scene.light_sampler.pmf_aimable(light);
 }
 

@@ -71,8 +71,8 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const std::vector<Majorant
   auto delta_weight = [&](size_t li, const Vec3& light_point) {
     float w = 1.f;
     if (equiangular) {
-      const float pdf_e =
-          equiangular_pdf(scene.lights[li], ray, spans, t, ctx.options.equiangular_in_cone);
+      const float pdf_e = equiangular_pdf(scene.light_sampler.bounds()[li], ray, spans, t,
+                                          ctx.options.equiangular_in_cone);
       if (pdf_e > 0.f)
         w = power_heuristic(distance_sampling_proxy_pdf(scene.media, spans, ray, t), pdf_e);
     }
