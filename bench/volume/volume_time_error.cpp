@@ -13,6 +13,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -87,6 +88,53 @@ std::vector<Measurement> measure_all(const SceneDescription& desc,
   return ms;
 }
 
+// The transport AOVs that split the beauty by what the path did (their sum
+// is the beauty, less what the camera sees directly: lights, emission).
+const std::vector<std::pair<Aov, const char*>> kPathKinds = {
+    {Aov::VolumeDirect, "volume_direct"},     {Aov::VolumeIndirect, "volume_indirect"},
+    {Aov::DiffuseDirect, "diffuse_direct"},   {Aov::DiffuseIndirect, "diffuse_indirect"},
+    {Aov::SpecularDirect, "specular_direct"}, {Aov::SpecularIndirect, "specular_indirect"}};
+
+// Where the first configuration's error lies: each path kind's squared
+// error against the reference's same AOV, over the reference beauty's
+// r^2 + 0.01 (relMSE's weights), averaged over `runs` renders. The kinds'
+// shares sum to the relMSE less the covariance between kinds. Not timed.
+void print_error_by_path_kind(const Scene& scene, const Config& c, const LayeredImage& reference,
+                              int spp, int runs) {
+  std::vector<double> share(kPathKinds.size(), 0.0);
+  for (int r = 0; r < runs; ++r) {
+    RenderOptions o;
+    o.spp = spp;
+    o.seed = 1000 + uint64_t(r);
+    o.equiangular = c.equiangular;
+    o.equiangular_in_cone = c.equiangular_in_cone;
+    o.light_vertices = c.light_vertices;
+    o.sun_shafts = c.sun_shafts;
+    o.aovs = std::vector<Aov>{};
+    for (const auto& k : kPathKinds) o.aovs->push_back(k.first);
+    const LayeredImage img = render(scene, o).image;
+    for (size_t k = 0; k < kPathKinds.size(); ++k)
+      for (const char* ch : {".R", ".G", ".B"}) {
+        const std::string name = std::string(kPathKinds[k].second) + ch;
+        const int ci = img.channel_index(name), cr = reference.channel_index(name);
+        const int cb = reference.channel_index(std::string(1, ch[1]));
+        if (ci < 0 || cr < 0 || cb < 0) continue;
+        double sum = 0;
+        for (int y = 0; y < img.height; ++y)
+          for (int x = 0; x < img.width; ++x) {
+            const double v = img.at(x, y, size_t(ci)), ref = reference.at(x, y, size_t(cr));
+            const double b = reference.at(x, y, size_t(cb));
+            sum += (v - ref) * (v - ref) / (b * b + 0.01);
+          }
+        share[k] += sum / (3.0 * img.width * img.height * runs);
+      }
+  }
+  std::printf("  error by path kind (%s, %d runs):", c.name.c_str(), runs);
+  for (size_t k = 0; k < kPathKinds.size(); ++k)
+    if (share[k] >= 5e-5) std::printf(" %s %.4f", kPathKinds[k].second, share[k]);
+  std::printf("\n");
+}
+
 struct Setup {
   int width = 160, height = 120, ref_spp = 1024, spp = 16, repeats = 8;
 };
@@ -138,7 +186,11 @@ void run_scene(const std::string& label, const std::filesystem::path& file,
   RenderOptions ro;
   ro.spp = setup.ref_spp;
   ro.seed = 7;
-  const RenderResult ref = render(build_scene(desc), ro);
+  // With the path-kind AOVs (the beauty is bit for bit the same).
+  ro.aovs = std::vector<Aov>{};
+  for (const auto& k : kPathKinds) ro.aovs->push_back(k.first);
+  const Scene ref_scene = build_scene(desc);
+  const RenderResult ref = render(ref_scene, ro);
   std::printf("  reference: %.1f s\n", ref.stats.seconds);
   std::printf("  %-50s %9s %19s %10s %14s\n", "configuration", "time [s]", "relMSE (+- se)",
               "fireflies", "equal-error t");
@@ -150,6 +202,7 @@ void run_scene(const std::string& label, const std::filesystem::path& file,
     std::printf("  %-50s %9.3f %10.4f +- %6.4f %9.4f%% %13.2fx\n", configs[i].name.c_str(),
                 ms[i].seconds, ms[i].relmse, ms[i].relmse_se, 100.0 * ms[i].fireflies,
                 ms[i].seconds * ms[i].relmse / base);
+  print_error_by_path_kind(ref_scene, configs[0], ref.image, setup.spp, std::min(setup.repeats, 4));
   std::printf(
       "  (equal-error t: time to reach the first row's error, relative to it; lower is "
       "better. fireflies: pixels > 10x their 5x5 median)\n\n");
