@@ -11,10 +11,9 @@ namespace vesper {
 namespace {
 
 // A homogeneous span's sigma_t (RGB average), as distance_sampling_proxy_pdf
-// takes it: at the span's middle.
+// takes it.
 float span_sigma_t(const MediaSet& media, const MajorantSpan& s, const Ray& ray) {
-  const float mid = std::isinf(s.t1) ? s.t0 + 1.f : 0.5f * (s.t0 + s.t1);
-  const MediumCoefficients c = media.coefficients(ray.origin + ray.dir * mid, ray.time);
+  const MediumCoefficients c = analytic_coefficients(media, s, ray);
   return (c.sigma_a + c.sigma_s).average();
 }
 
@@ -111,7 +110,9 @@ SunShaftSample sample_sun_shaft(const Scene& scene, const Ray& ray,
   // as next-event estimation and the escaping phase ray weigh them.
   const float dir_pdf = ls->is_delta ? 1.f : ls->pdf;
   const float pmf_shaft = 1.f / float(n);
-  const float shaft = shaft_to_tracking_ratio(scene.media, spans, ray, depth, *t) * pmf_shaft;
+  // shaft_to_tracking_ratio, with p_t already at hand.
+  const float p_d = distance_sampling_proxy_pdf(scene.media, spans, ray, *t);
+  const float shaft = (p_d > 0.f ? p_t / p_d : 0.f) * pmf_shaft;
   const float w = power_heuristic(
       shaft * dir_pdf, scene.light_sampler.pmf(ShadingPoint{x, Vec3(0.f)}, out.light) * dir_pdf,
       ls->is_delta ? 0.f : phase.pdf(-ray.dir, ls->wi));

@@ -55,6 +55,12 @@ FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantS
   return {FlightEvent::Escaped, spans.empty() ? 0.f : spans.back().t1, 0.f};
 }
 
+MediumCoefficients analytic_coefficients(const MediaSet& media, const MajorantSpan& s,
+                                         const Ray& ray) {
+  const float mid = std::isinf(s.t1) ? s.t0 + 1.f : 0.5f * (s.t0 + s.t1);
+  return media.coefficients(ray.origin + ray.dir * mid, ray.time);
+}
+
 namespace {
 // Calls f(span) for the spans before t, the last one clipped at t.
 template <typename F>
@@ -64,13 +70,6 @@ void for_spans_before(const std::vector<MajorantSpan>& spans, float t, F&& f) {
     s.t1 = std::min(s.t1, t);
     f(s);
   }
-}
-
-// The coefficients of an analytic span (constant along it): at its middle.
-MediumCoefficients analytic_coefficients(const MediaSet& media, const MajorantSpan& s,
-                                         const Ray& ray) {
-  const float mid = std::isinf(s.t1) ? s.t0 + 1.f : 0.5f * (s.t0 + s.t1);
-  return media.coefficients(ray.origin + ray.dir * mid, ray.time);
 }
 
 // Ratio tracking across one span, multiplying tr by each null collision's
@@ -138,8 +137,7 @@ Rgb estimate_transmittance(const MediaSet& media, const Ray& ray, float tmax, Sa
   for (const MajorantSpan& span : spans) {
     if (span.analytic) {
       if (std::isinf(span.t1)) return Rgb{};
-      const MediumCoefficients c =
-          media.coefficients(ray.origin + ray.dir * (0.5f * (span.t0 + span.t1)), ray.time);
+      const MediumCoefficients c = analytic_coefficients(media, span, ray);
       tr *= exp_rgb((c.sigma_a + c.sigma_s) * -(span.t1 - span.t0));
     } else if (!ratio_track_span(media, span, ray, sampler, tr)) {
       return Rgb{};

@@ -56,6 +56,11 @@ FreeFlight sample_free_flight(const MediaSet& media, const std::vector<MajorantS
 Rgb estimate_transmittance_to(const MediaSet& media, const std::vector<MajorantSpan>& spans,
                               const Ray& ray, float t, Sampler& sampler);
 
+// The coefficients of an analytic span (constant along it), read at its
+// middle (a unit in, for a span without end).
+MediumCoefficients analytic_coefficients(const MediaSet& media, const MajorantSpan& s,
+                                         const Ray& ray);
+
 // A deterministic stand-in for the density (per unit t) with which
 // sample_free_flight scatters at t: avg(sigma_s(t)) * exp(-sum over the spans
 // before t of avg(sigma_t) * length (analytic) or sigma_maj * length (grid)).
