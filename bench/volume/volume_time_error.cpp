@@ -44,31 +44,39 @@ struct Measurement {
   double fireflies = 0;  // firefly_fraction (image_metrics.h), mean over the runs
 };
 
+// The scene as configuration c builds it.
+Scene build_for(const SceneDescription& desc, const Config& c) {
+  SceneBuildOptions build;
+  build.media.majorant_grid = c.majorant_grid;
+  SceneDescription d = desc;
+  if (c.light_selection) d.render.light_selection = *c.light_selection;
+  return build_scene(d, build);
+}
+
+// Configuration c's render options for run r (its seed).
+RenderOptions options_for(const Config& c, int spp, int r) {
+  RenderOptions o;
+  o.spp = spp;
+  o.seed = 1000 + uint64_t(r);
+  o.equiangular = c.equiangular;
+  o.equiangular_in_cone = c.equiangular_in_cone;
+  o.light_vertices = c.light_vertices;
+  o.sun_shafts = c.sun_shafts;
+  return o;
+}
+
 // Runs every configuration `repeats` times, interleaved so that machine load
 // drifts affect all of them alike.
 std::vector<Measurement> measure_all(const SceneDescription& desc,
                                      const std::vector<Config>& configs,
                                      const LayeredImage& reference, int spp, int repeats) {
   std::vector<Scene> scenes;
-  for (const Config& c : configs) {
-    SceneBuildOptions build;
-    build.media.majorant_grid = c.majorant_grid;
-    SceneDescription d = desc;
-    if (c.light_selection) d.render.light_selection = *c.light_selection;
-    scenes.push_back(build_scene(d, build));
-  }
+  for (const Config& c : configs) scenes.push_back(build_for(desc, c));
   std::vector<Measurement> ms(configs.size());
   std::vector<double> sum2(configs.size(), 0.0);
   for (int r = 0; r < repeats; ++r) {
     for (size_t i = 0; i < configs.size(); ++i) {
-      RenderOptions o;
-      o.spp = spp;
-      o.seed = 1000 + uint64_t(r);
-      o.equiangular = configs[i].equiangular;
-      o.equiangular_in_cone = configs[i].equiangular_in_cone;
-      o.light_vertices = configs[i].light_vertices;
-      o.sun_shafts = configs[i].sun_shafts;
-      const RenderResult res = render(scenes[i], o);
+      const RenderResult res = render(scenes[i], options_for(configs[i], spp, r));
       const double e = relative_mse(res.image, reference);
       ms[i].fireflies += firefly_fraction(res.image);
       ms[i].seconds += res.stats.seconds;
@@ -99,17 +107,12 @@ const std::vector<std::pair<Aov, const char*>> kPathKinds = {
 // error against the reference's same AOV, over the reference beauty's
 // r^2 + 0.01 (relMSE's weights), averaged over `runs` renders. The kinds'
 // shares sum to the relMSE less the covariance between kinds. Not timed.
-void print_error_by_path_kind(const Scene& scene, const Config& c, const LayeredImage& reference,
-                              int spp, int runs) {
+void print_error_by_path_kind(const SceneDescription& desc, const Config& c,
+                              const LayeredImage& reference, int spp, int runs) {
+  const Scene scene = build_for(desc, c);
   std::vector<double> share(kPathKinds.size(), 0.0);
   for (int r = 0; r < runs; ++r) {
-    RenderOptions o;
-    o.spp = spp;
-    o.seed = 1000 + uint64_t(r);
-    o.equiangular = c.equiangular;
-    o.equiangular_in_cone = c.equiangular_in_cone;
-    o.light_vertices = c.light_vertices;
-    o.sun_shafts = c.sun_shafts;
+    RenderOptions o = options_for(c, spp, r);
     o.aovs = std::vector<Aov>{};
     for (const auto& k : kPathKinds) o.aovs->push_back(k.first);
     const LayeredImage img = render(scene, o).image;
@@ -189,8 +192,7 @@ void run_scene(const std::string& label, const std::filesystem::path& file,
   // With the path-kind AOVs (the beauty is bit for bit the same).
   ro.aovs = std::vector<Aov>{};
   for (const auto& k : kPathKinds) ro.aovs->push_back(k.first);
-  const Scene ref_scene = build_scene(desc);
-  const RenderResult ref = render(ref_scene, ro);
+  const RenderResult ref = render(build_scene(desc), ro);
   std::printf("  reference: %.1f s\n", ref.stats.seconds);
   std::printf("  %-50s %9s %19s %10s %14s\n", "configuration", "time [s]", "relMSE (+- se)",
               "fireflies", "equal-error t");
@@ -202,7 +204,7 @@ void run_scene(const std::string& label, const std::filesystem::path& file,
     std::printf("  %-50s %9.3f %10.4f +- %6.4f %9.4f%% %13.2fx\n", configs[i].name.c_str(),
                 ms[i].seconds, ms[i].relmse, ms[i].relmse_se, 100.0 * ms[i].fireflies,
                 ms[i].seconds * ms[i].relmse / base);
-  print_error_by_path_kind(ref_scene, configs[0], ref.image, setup.spp, std::min(setup.repeats, 4));
+  print_error_by_path_kind(desc, configs[0], ref.image, setup.spp, std::min(setup.repeats, 4));
   std::printf(
       "  (equal-error t: time to reach the first row's error, relative to it; lower is "
       "better. fireflies: pixels > 10x their 5x5 median)\n\n");
