@@ -33,9 +33,10 @@ struct Config {
   bool majorant_grid = true;
   bool equiangular = true;
   bool equiangular_in_cone = true;
-  std::optional<LightSelection> light_selection;  // default: the scene's
-  std::optional<bool> light_vertices{};           // default: RenderOptions' automatic choice
+  std::optional<LightSelection> light_selection{};  // default: the scene's
+  std::optional<bool> light_vertices{};             // default: RenderOptions' automatic choice
   bool sun_shafts = true;
+  std::optional<int> light_traced_from{};  // default: RenderOptions' automatic choice
 };
 
 struct Measurement {
@@ -62,6 +63,7 @@ RenderOptions options_for(const Config& c, int spp, int r) {
   o.equiangular_in_cone = c.equiangular_in_cone;
   o.light_vertices = c.light_vertices;
   o.sun_shafts = c.sun_shafts;
+  o.light_traced_from = c.light_traced_from;
   return o;
 }
 
@@ -229,56 +231,57 @@ int main(int argc, char** argv) {
   const std::filesystem::path scenes = root / "scenes";
   // "Issue 11's start": the estimator the issue measured (equiangular over
   // the whole ray, light choice by power and uniformly).
-  const Config start{"issue 11 start (whole-ray equiangular, power_uniform)",
-                     true,
-                     true,
-                     false,
-                     LightSelection::PowerUniform,
-                     false,
-                     false};
-  const Config no_lv{"light-vertex connections off", true, true, true, std::nullopt, false};
-  const Config lv_on{"light-vertex connections on", true, true, true, std::nullopt, true};
+  const Config start{.name = "issue 11 start (whole-ray equiangular, power_uniform)",
+                     .equiangular_in_cone = false,
+                     .light_selection = LightSelection::PowerUniform,
+                     .light_vertices = false,
+                     .sun_shafts = false,
+                     .light_traced_from = 0};
+  const Config lt_forced{.name = "light tracing from 2 (forced on)", .light_traced_from = 2};
+  const Config lt_3{.name = "light tracing from 3", .light_traced_from = 3};
+  const Config lt_off{.name = "light tracing off", .light_traced_from = 0};
+  const Config lt_lv_off{.name = "light tracing off, light-vertex connections off",
+                         .light_vertices = false,
+                         .light_traced_from = 0};
+  const Config no_lv{.name = "light-vertex connections off", .light_vertices = false};
+  const Config lv_on{.name = "light-vertex connections on", .light_vertices = true};
+  const Config eq_off{.name = "equiangular off", .equiangular = false};
 
   if (wanted(only, "fog-shafts"))
     run_scene("fog-shafts (homogeneous fog, spot light)", scenes / "fog-shafts/scene.json",
-              {{"default", true, true, true, std::nullopt},
+              {{.name = "default"},
+               lt_forced,
                no_lv,
-               {"equiangular over the whole ray", true, true, false, std::nullopt},
-               {"equiangular off", true, false, true, std::nullopt},
+               {.name = "equiangular over the whole ray", .equiangular_in_cone = false},
+               eq_off,
                start},
               {}, quick);
   if (wanted(only, "point-fog"))
     run_scene("point-fog (homogeneous fog, point light)",
               root / "bench/scenes/point-fog/scene.json",
-              {{"default", true, true, true, std::nullopt},
-               no_lv,
-               {"equiangular off", true, false, true, std::nullopt},
-               start},
-              {}, quick);
+              {{.name = "default"}, lt_3, lt_off, lt_lv_off, eq_off, start}, {}, quick);
   if (wanted(only, "smoke"))
     run_scene("smoke (shared smoke.vdb, quad + point light)", scenes / "smoke/scene.json",
-              {{"default (majorant grid, equiangular)", true, true, true, std::nullopt},
-               {"majorant grid off (global majorant)", false, true, true, std::nullopt},
+              {{.name = "default (majorant grid, equiangular)"},
+               lt_forced,
+               {.name = "majorant grid off (global majorant)", .majorant_grid = false},
                lv_on,
-               {"equiangular off", true, false, true, std::nullopt},
+               eq_off,
                start},
               {}, quick);
   if (wanted(only, "night-room"))
     run_scene("night-room (fog, sun through a window, three candles)",
               scenes / "night-room/scene.json",
-              {{"default", true, true, true, std::nullopt},
+              {{.name = "default"},
+               lt_forced,
                no_lv,
-               {"sun shafts off", true, true, true, std::nullopt, std::nullopt, false},
+               {.name = "sun shafts off", .sun_shafts = false},
                start},
               {200, 125, 1024, 64, 4}, quick);
   if (wanted(only, "lantern")) {
     const std::filesystem::path lantern = write_lantern_scene();
     run_scene("thin cloud lantern (generated cloud VDB, point light inside)", lantern,
-              {{"default", true, true, true, std::nullopt},
-               no_lv,
-               {"equiangular off", true, false, true, std::nullopt},
-               start},
-              {}, quick);
+              {{.name = "default"}, lt_3, lt_off, lt_lv_off, eq_off, start}, {}, quick);
     std::filesystem::remove_all(lantern.parent_path());
   }
   return 0;

@@ -124,8 +124,7 @@ bool light_vertices_pay_off(const Scene& scene) {
   return false;
 }
 
-std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sampler& sampler,
-                                              uint32_t& rays) {
+std::optional<LightRayStart> sample_light_ray(const Scene& scene, Sampler& sampler) {
   const LightSampler& ls = scene.light_sampler;
   const float total = connectable_power(ls);
   const float u_light = sampler.next1();
@@ -140,11 +139,26 @@ std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sa
     cum += ls.powers()[i];
     if (u_light * total < cum) break;
   }
-  const LightBounds& b = *ls.bounds()[li];
+  const Emission e = sample_emission(*ls.bounds()[li], u_dir, u_disk);
   const float pmf = ls.powers()[li] / total;
-  const Emission e = sample_emission(b, u_dir, u_disk);
+  return LightRayStart{li, e.origin, e.dir, e.weight / pmf};
+}
 
-  const Ray ray{e.origin, e.dir, std::numeric_limits<float>::infinity(), time};
+Rgb light_ray_intensity(const Scene& scene, const LightRayStart& start, const Vec3& p) {
+  const Vec3 from_centre = p - *scene.light_sampler.bounds()[start.light]->aim();
+  if (!(length_squared(from_centre) > 0.f) || !(length_squared(p - start.origin) > 0.f)) return {};
+  return scene.lights[start.light].intensity_toward(normalize(from_centre));
+}
+
+bool light_is_traced(const Scene& scene, size_t light) {
+  return connectable(scene.light_sampler, light);
+}
+
+std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sampler& sampler,
+                                              uint32_t& rays) {
+  const std::optional<LightRayStart> e = sample_light_ray(scene, sampler);
+  if (!e) return std::nullopt;
+  const Ray ray{e->origin, e->dir, std::numeric_limits<float>::infinity(), time};
   const std::optional<SurfaceHit> hit = scene.accel->intersect(ray);
   ++rays;
   const float tmax = hit ? hit->t : std::numeric_limits<float>::infinity();
@@ -154,8 +168,8 @@ std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sa
   const FreeFlight flight = sample_free_flight(scene.media, spans, ray, sampler, weight);
   if (flight.event == FlightEvent::Absorbed) return std::nullopt;
   LightVertex v;
-  v.light = li;
-  v.light_point = e.origin;
+  v.light = e->light;
+  v.light_point = e->origin;
   if (flight.event == FlightEvent::Scattered) {
     v.p = ray.origin + ray.dir * flight.t;
     v.g = flight.g;
@@ -167,15 +181,10 @@ std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sa
     v.material = hit->material;
   }
   // A collision at distance 0 leaves no direction toward the light (its
-  // phase would be NaN): an event of measure zero, dropped. A spot's
-  // intensity (a spot sphere light's radiance too) depends on the receiver's
-  // direction from the centre.
-  const Vec3 from_centre = v.p - *b.aim();
-  if (!(length_squared(from_centre) > 0.f) || !(length_squared(v.p - e.origin) > 0.f))
-    return std::nullopt;
-  const Rgb intensity = scene.lights[li].intensity_toward(normalize(from_centre));
+  // phase would be NaN): an event of measure zero, dropped.
+  const Rgb intensity = light_ray_intensity(scene, *e, v.p);
   if (intensity.is_black()) return std::nullopt;
-  v.alpha = intensity * weight * (e.weight / pmf);
+  v.alpha = intensity * weight * e->weight;
   return v;
 }
 

@@ -54,6 +54,22 @@ struct LightVertex {
 // more than the noise they remove).
 bool light_vertices_pay_off(const Scene& scene);
 
+// Where a light subpath starts: a point or spot light (with or without a
+// radius) chosen by power, a point on it and a direction, as light vertices
+// and the light tracer (light_tracer.h) sample them.
+struct LightRayStart {
+  size_t light = 0;
+  Vec3 origin, dir;
+  float weight = 0;  // per unit intensity: 1 / (light pmf * emission pdfs)
+};
+std::optional<LightRayStart> sample_light_ray(const Scene& scene, Sampler& sampler);
+// The intensity the start's light sends toward its subpath's first vertex p
+// (a spot's depends on p's direction from its centre); black for a p at the
+// light, which leaves no direction.
+Rgb light_ray_intensity(const Scene& scene, const LightRayStart& start, const Vec3& p);
+// Whether light subpaths start at this light (point and spot lights with power).
+bool light_is_traced(const Scene& scene, size_t light);
+
 // Traces one light vertex at shutter time `time`; nullopt when the light ray
 // left the scene, was absorbed, or hit an emitter or a specular surface.
 std::optional<LightVertex> trace_light_vertex(const Scene& scene, float time, Sampler& sampler,

@@ -22,7 +22,7 @@ void add_equiangular(PathContext& ctx, const std::vector<MajorantSpan>& spans, i
   const Ray& ray = path.ray;
   EquiangularSample es = sample_equiangular(ctx.scene, ray, spans, path.throughput, ctx.sampler,
                                             ctx.result.rays, ctx.options.equiangular_in_cone);
-  if (es.value.is_black()) return;
+  if (es.value.is_black() || ctx.light_traced(depth + 1, es.light)) return;
   es.value *= 1.f - ctx.light_vertex_share(path, ray.origin + ray.dir * es.t, Vec3(0.f), Vec3(0.f),
                                            es.light, es.light_point);
   const int group = ctx.scene.light_group[es.light];
@@ -82,7 +82,7 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const std::vector<Majorant
   const DirectSample ds =
       sample_direct<true>(scene, ShadingPoint{p, Vec3(0.f)}, Vec3(0.f), ray.time, ctx.sampler,
                           ctx.result.rays, eval_phase, delta_weight, shaft);
-  if (!ds.value.is_black())
+  if (!ds.value.is_black() && !ctx.light_traced(depth + 1, ds.light))
     ctx.add(path.throughput * ds.value, depth + 1, scene.light_group[ds.light]);
   return ds.selection;
 }
@@ -91,7 +91,7 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const std::vector<Majorant
 void connect_from_medium(PathContext& ctx, const Vec3& p, const HgPhase& phase, const Vec3& wo,
                          int depth, const PathState& path) {
   const LightVertex* lv = ctx.get_light_vertex(path.ray.time);
-  if (!lv) return;
+  if (!lv || ctx.light_traced(depth + 2, lv->light)) return;
   const Rgb value = connect_light_vertex(ctx.scene, *lv, p, Vec3(0.f), path.ray.time, ctx.sampler,
                                          ctx.result.rays, ctx.strategies(), [&](const Vec3& wi) {
                                            const float f = phase.eval(wo, wi);
@@ -109,7 +109,7 @@ void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const Fre
                                                                   *shaft_depth, flight.t)
                                         : 0.f;
   std::optional<LightSampler::Sums> selection;
-  if (ctx.have_lights()) {
+  if (ctx.have_lights() && !ctx.light_traced_all(depth + 1)) {
     selection =
         add_direct_light(ctx, spans, flight.t, phase, equiangular, shaft_ratio, depth, path);
   } else {
@@ -119,7 +119,7 @@ void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const Fre
   }
   const Vec3 p = path.ray.origin + path.ray.dir * flight.t;
   const Vec3 wo = -path.ray.dir;
-  if (ctx.light_vertices && depth + 1 < ctx.options.max_depth)
+  if (ctx.light_vertices && depth + 1 < ctx.options.max_depth && !ctx.light_traced_all(depth + 2))
     connect_from_medium(ctx, p, phase, wo, depth, path);
   const Vec3 wi = phase.sample(wo, ctx.sampler.next2());
   path.prev_scatter_pdf = phase.pdf(wo, wi);  // f / pdf = 1: throughput unchanged
@@ -162,7 +162,7 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
   // Equiangular sampling needs a light it can aim at (a point or a sphere).
   const bool equiangular = options.equiangular && !spans.empty() &&
                            scene.light_sampler.has_aimable() && depth < options.max_depth;
-  if (equiangular) add_equiangular(ctx, spans, depth, path);
+  if (equiangular && !ctx.light_traced_all(depth + 1)) add_equiangular(ctx, spans, depth, path);
   // Sun shafts: the spans' optical depth, once for the sample and the weights.
   std::optional<double> shaft_depth;
   if (options.sun_shafts && depth < options.max_depth && sun_shafts_apply(scene, spans)) {
@@ -174,6 +174,7 @@ MediumEvent sample_medium(PathContext& ctx, float tmax, int depth, PathState& pa
   if (flight.event == FlightEvent::Absorbed) return MediumEvent::PathEnded;
   if (flight.event == FlightEvent::Escaped) return MediumEvent::None;
   if (depth >= options.max_depth) return MediumEvent::PathEnded;
+  if (depth == 0) ctx.first_event_splattable = true;
   if (depth == 0 && options.record) options.record->set_first_volume();
   scatter(ctx, spans, flight, equiangular, shaft_depth, depth, path);
   return MediumEvent::Scattered;

@@ -40,6 +40,22 @@ struct PathContext {
   bool light_vertex_traced = false;
   std::optional<LightVertex> light_vertex{};
 
+  // The camera path's first event is one the light tracer connects to the
+  // camera: in a medium or on a diffuse surface (light_traced_from).
+  bool first_event_splattable = false;
+  // Whether the light tracer takes the path this contribution ends, of
+  // `events` scattering events, at `light` (PathTracerOptions::light_traced_from).
+  bool light_traced(int events, size_t light) const {
+    return options.light_traced_from > 0 && first_event_splattable &&
+           events >= options.light_traced_from && light_is_traced(scene, light);
+  }
+  // Whether the light tracer takes every path of `events` or more events
+  // this camera path can still make: nothing is left for it to add.
+  bool light_traced_all(int events) const {
+    return options.light_traced_all && first_event_splattable &&
+           events >= options.light_traced_from;
+  }
+
   bool have_lights() const { return !scene.light_sampler.empty(); }
   PathStrategies strategies() const { return {options.equiangular, options.equiangular_in_cone}; }
 

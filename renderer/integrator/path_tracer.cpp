@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "renderer/integrator/direct_lighting.h"
+#include "renderer/integrator/light_tracer.h"
 #include "renderer/integrator/light_vertex_connection.h"
 #include "renderer/integrator/medium_step.h"
 #include "renderer/integrator/path_context.h"
@@ -26,7 +27,7 @@ void add_light_reached(PathContext& ctx, size_t li, float distance, int depth,
   const Scene& scene = ctx.scene;
   const Light& light = scene.lights[li];
   const Rgb le = light.emitted(path.ray.dir);
-  if (le.is_black()) return;
+  if (le.is_black() || ctx.light_traced(depth, li)) return;
   float w = 1.f;
   if (!path.count_emission_fully) {
     const float pmf = path.prev_selection
@@ -75,7 +76,7 @@ LightSampler::Sums add_direct_light(PathContext& ctx, const SurfaceHit& hit, con
                           bsdf_pdf(bsdf, wo, wi)};
       },
       delta_weight);
-  if (ds.value.is_black()) return ds.selection;
+  if (ds.value.is_black() || ctx.light_traced(depth + 1, ds.light)) return ds.selection;
   const Rgb fraction = safe_ratio(ds.diffuse, ds.value);
   ctx.add(path.throughput * ds.value, depth + 1, ctx.scene.light_group[ds.light], false,
           depth == 0 ? &fraction : nullptr);
@@ -87,7 +88,7 @@ void connect_from_surface(PathContext& ctx, const SurfaceHit& hit, const Bsdf& b
                           const Frame& frame, const Vec3& wo, int depth, const Rgb& throughput,
                           float time) {
   const LightVertex* lv = ctx.get_light_vertex(time);
-  if (!lv) return;
+  if (!lv || ctx.light_traced(depth + 2, lv->light)) return;
   const Rgb value = connect_light_vertex(
       ctx.scene, *lv, hit.p, hit.n, time, ctx.sampler, ctx.result.rays, ctx.strategies(),
       [&](const Vec3& wi_world) {
@@ -116,6 +117,9 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   const Frame frame = Frame::from_normal(n_shading);
   const Vec3 wo = frame.to_local(wo_world);
   if (depth == 0 && ctx.options.want_aovs) ctx.result.albedo = bsdf_albedo(bsdf);
+  if constexpr (kMedia)
+    if (depth == 0 && ctx.options.light_traced_from > 0)
+      ctx.first_event_splattable = first_event_light_traced(bsdf);
   // An opaque BSDF reflects only on the viewer's side: lights wholly behind
   // it can be skipped; light through a dielectric may come from anywhere.
   const ShadingPoint at{hit.p, transmissive ? Vec3(0.f) : n_shading};
@@ -132,7 +136,8 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   // Whatever the BSDF sample below does: the path tracer's share of the
   // connection's paths assumes it was made.
   if constexpr (kMedia)
-    if (ctx.light_vertices && !bsdf_is_delta(bsdf) && depth + 1 < ctx.options.max_depth)
+    if (ctx.light_vertices && !bsdf_is_delta(bsdf) && depth + 1 < ctx.options.max_depth &&
+        !ctx.light_traced_all(depth + 2))
       connect_from_surface(ctx, hit, bsdf, frame, wo, depth, path.throughput, path.ray.time);
 
   const float uc = ctx.sampler.next1();
@@ -175,6 +180,8 @@ PathResult trace(const Scene& scene, const Ray& camera_ray, Sampler& sampler,
   if constexpr (kMedia) ctx.light_vertices = options.light_vertices;
   PathState path{camera_ray};
   for (int depth = 0;; ++depth) {
+    if constexpr (kMedia)
+      if (ctx.light_traced_all(depth)) break;
     const std::optional<SurfaceHit> hit = scene.accel->intersect(path.ray);
     ++result.rays;
     if (depth == 0 && hit) record_first_hit(ctx, *hit, path.ray);

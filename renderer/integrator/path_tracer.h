@@ -38,6 +38,13 @@ struct PathTracerOptions {
   // Layers and transport AOVs: when set, every contribution is also binned
   // here (reset by trace_path). Null for plain renders.
   PathRecord* record = nullptr;
+  // > 0: the light tracer (light_tracer.h) takes the paths whose first event
+  // is in a medium and that make at least this many scattering events, from
+  // the lights it starts at: camera paths leave them out. 0 = off.
+  int light_traced_from = 0;
+  // ... and it takes every light: camera paths that can only make such paths
+  // end.
+  bool light_traced_all = false;
   // Estimate the camera ray's transmittance through the media (layer alpha).
   bool want_camera_transmittance = false;
   // > 0: a camera sample's indirect light (reached after two or more

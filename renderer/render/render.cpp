@@ -11,10 +11,12 @@
 #include <cmath>
 #include <optional>
 
+#include "renderer/integrator/light_tracer.h"
 #include "renderer/integrator/light_vertex.h"
 #include "renderer/output/metadata_text.h"
 #include "renderer/output/range_metadata.h"
 #include "renderer/render/channel_layout.h"
+#include "renderer/render/light_pass.h"
 #include "renderer/render/pixel_sampler.h"
 #include "renderer/render/sampling_plan.h"
 
@@ -29,7 +31,7 @@ double seconds_since(Clock::time_point t0) {
 }
 
 PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& options,
-                                      const ChannelLayout& layout) {
+                                      const ChannelLayout& layout, const SamplingPlan& plan) {
   PathTracerOptions pt;
   pt.max_depth = scene.render.max_depth;
   pt.want_aovs = layout.albedo >= 0 || layout.normal >= 0 || layout.depth >= 0;
@@ -40,6 +42,16 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   pt.want_camera_transmittance = layout.need_transmittance;
   const std::optional<double> clamp = options.clamp ? options.clamp : scene.render.clamp;
   pt.indirect_clamp = float(clamp.value_or(0.0));
+  // Light tracing adds its splats to a fixed sample count per pixel: not
+  // to adaptive renders, whose pixels stop at different counts.
+  const int from =
+      options.light_traced_from.value_or(light_tracing_pays_off(scene) ? kLightTracedFrom : 0);
+  if (from > 0 && light_tracing_applies(scene) && !plan.multipass() && !options.pixel_samples) {
+    pt.light_traced_from = std::max(2, from);
+    pt.light_traced_all = !scene.media.has_emission();
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+      if (!light_is_traced(scene, i)) pt.light_traced_all = false;
+  }
   return pt;
 }
 
@@ -54,6 +66,7 @@ struct Pass {
   LayeredImage* image = nullptr;
   const std::vector<int64_t>* targets = nullptr;  // per pixel; null = uniform
   int64_t uniform_target = 0;
+  const LightSplats* splats = nullptr;  // the light tracer's, added to every pixel
 
   int64_t target(size_t p) const { return targets ? (*targets)[p] : uniform_target; }
   size_t tiles() const { return size_t(tiles_x) * size_t(tiles_y); }
@@ -91,9 +104,11 @@ SampleCounts render_tile(const Pass& pass, size_t tile) {
       if (pass.film) {
         const PixelSums px = pass.film->pixel(p);
         counts += sample_pixel(c, x, y, sample_count(px.counts), target, pt, record, px);
+        if (pass.splats) pass.splats->add_to(p, px);
       } else {
         const PixelSums px = scratch.clear();
         counts += sample_pixel(c, x, y, 0, target, pt, record, px);
+        if (pass.splats) pass.splats->add_to(p, px);
         resolve_pixel({px.sums, px.stream_sums, px.counts, c.layout.streamed.size()}, nc, derived,
                       pass.image->pixels.data() + p * nc);
       }
@@ -250,7 +265,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   const SamplingPlan plan = plan_sampling(scene.render, options);
   const ChannelLayout layout = layout_for(scene, requested_aovs(scene, options, plan),
                                           options.layers, options.layer_variance);
-  const PathTracerOptions pt = path_tracer_options(scene, options, layout);
+  const PathTracerOptions pt = path_tracer_options(scene, options, layout, plan);
 
   RenderResult out;
   LayeredImage& img = out.image;
@@ -268,6 +283,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             (img.height + kTileSize - 1) / kTileSize};
   pass.targets = options.pixel_samples;
   pass.uniform_target = plan.cap;
+  std::optional<LightSplats> splats;
+  if (pt.light_traced_from > 0) {
+    splats.emplace(scene, pt, layout, plan, options.threads);
+    pass.splats = &*splats;
+  }
   // Progress in camera samples, against the most the range allows.
   const uint64_t most = uint64_t(pixels) * uint64_t(plan.cap);
   std::atomic<uint64_t> done{0};
@@ -297,8 +317,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
 
   out.stats.seconds = seconds_since(t0);
   out.stats.camera_samples = counts.camera_samples;
-  out.stats.rays = counts.rays;
-  out.stats.nonfinite_samples = counts.nonfinite;
+  out.stats.rays = counts.rays + (splats ? splats->rays() : 0);
+  out.stats.nonfinite_samples = counts.nonfinite + (splats ? splats->nonfinite() : 0);
   set_range_metadata(img.metadata, {.scene_hash = scene.content_hash,
                                     .renderer_version = VESPER_VERSION,
                                     .spp = plan.cap,

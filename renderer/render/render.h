@@ -65,6 +65,12 @@ struct RenderOptions {
   // Connections to a vertex traced from point/spot lights (media only);
   // unset: where they pay off (light_vertices_pay_off, light_vertex.h).
   std::optional<bool> light_vertices;
+  // Light tracing (integrator/light_tracer.h) takes the paths whose first
+  // event is in a medium or on a diffuse surface and that make at least this
+  // many scattering events (>= 2; PathTracerOptions::light_traced_from);
+  // 0 = off; unset: where it pays off (light_tracing_pays_off). Fixed
+  // sample counts only: adaptive renders and pixel_samples leave it off.
+  std::optional<int> light_traced_from;
   // Ranks per Cryptomatte type (Aov::Cryptomatte): (depth + 1) / 2 RGBA layers
   // each, in [1, kMaxCryptoDepth] (std::invalid_argument otherwise).
   int cryptomatte_depth = 6;

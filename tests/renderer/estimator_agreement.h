@@ -19,12 +19,14 @@ struct EstimatorNoise {
 };
 
 // Estimator a renders scene_a, b scene_b: the same scene built two ways
-// (e.g. another render.light_selection).
+// (e.g. another render.light_selection). `aov`: compare that RGB AOV or
+// layer instead of the beauty.
 inline EstimatorNoise expect_estimators_agree(const Scene& scene_a, const RenderOptions& a,
                                               const Scene& scene_b, const RenderOptions& b,
-                                              int batches = 10, int tile = 6) {
-  const TileStats sa = tile_stats(scene_a, batches, a.spp, tile, 100, a);
-  const TileStats sb = tile_stats(scene_b, batches, b.spp, tile, 500, b);
+                                              int batches = 10, int tile = 6,
+                                              const std::string& aov = "") {
+  const TileStats sa = tile_stats(scene_a, batches, a.spp, tile, 100, a, aov);
+  const TileStats sb = tile_stats(scene_b, batches, b.spp, tile, 500, b, aov);
   const double crit = sidak_t_critical(0.01, int(sa.mean.size()), batches - 1);
   EstimatorNoise noise;
   double z_max = 0;

@@ -33,9 +33,12 @@ SceneDescription shaft_and_pool_scene(int max_depth, double radius = 0) {
   return d;
 }
 
+// Light tracing off: by default it takes the deep paths of these scenes
+// (only point and spot lights), which the connections are measured on.
 RenderOptions with_connections(bool on) {
   RenderOptions o;
   o.light_vertices = on;
+  o.light_traced_from = 0;
   return o;
 }
 

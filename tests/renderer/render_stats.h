@@ -6,6 +6,8 @@
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "renderer/render/render.h"
@@ -18,14 +20,17 @@ struct TileStats {
   std::vector<double> mean, se;  // per tile, luminance
 };
 
-inline double pixel_luminance(const LayeredImage& img, int x, int y) {
-  return 0.2126 * img.at(x, y, 0) + 0.7152 * img.at(x, y, 1) + 0.0722 * img.at(x, y, 2);
+// The luminance of the RGB channels starting at channel `c` (0: the beauty).
+inline double pixel_luminance(const LayeredImage& img, int x, int y, size_t c = 0) {
+  return 0.2126 * img.at(x, y, c) + 0.7152 * img.at(x, y, c + 1) + 0.0722 * img.at(x, y, c + 2);
 }
 
 // `options`: the estimator to render with (its spp and seed are set here;
-// spp unset: the scene's).
+// spp unset: the scene's). `aov`: the RGB AOV or layer to measure instead of
+// the beauty (its name without .R).
 inline TileStats tile_stats(const Scene& scene, int batches, std::optional<int> spp, int tile,
-                            uint64_t seed0 = 1000, RenderOptions options = {}) {
+                            uint64_t seed0 = 1000, RenderOptions options = {},
+                            const std::string& aov = "") {
   const int w = scene.film.width, h = scene.film.height;
   TileStats st;
   st.tiles_x = (w + tile - 1) / tile;
@@ -37,11 +42,13 @@ inline TileStats tile_stats(const Scene& scene, int batches, std::optional<int> 
     options.spp = spp;
     options.seed = seed0 + uint64_t(b);
     const RenderResult r = render(scene, options);
+    const int c = aov.empty() ? 0 : r.image.channel_index(aov + ".R");
+    if (c < 0) throw std::invalid_argument("tile_stats: no channel " + aov + ".R");
     std::vector<double> sum(n, 0.0), count(n, 0.0);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const size_t t = size_t((y / tile) * st.tiles_x + x / tile);
-        sum[t] += pixel_luminance(r.image, x, y);
+        sum[t] += pixel_luminance(r.image, x, y, size_t(c));
         count[t] += 1;
       }
     for (size_t t = 0; t < n; ++t) per_batch[t].push_back(sum[t] / count[t]);

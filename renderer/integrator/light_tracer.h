@@ -1,0 +1,67 @@
+#pragma once
+// Light tracing (the t = 1 strategy of bidirectional path tracing): light
+// subpaths from point and spot lights, each medium vertex connected to the
+// camera. It takes a fixed part of path space, which the camera paths then
+// leave out (PathTracerOptions::light_traced_from): paths whose first event
+// after the camera is in a medium, with at least that many scattering
+// events, from a light that light subpaths start at (light_is_traced). In
+// fog lit by a small light these are the random walk's deep paths, whose
+// camera-side estimate is the noise that is left (bench/README.md); a light
+// subpath reaches many pixels with bounded contributions (no 1 / r^2 at the
+// light, the camera outside the fog).
+#include <vector>
+
+#include "renderer/integrator/path_record.h"
+
+#include "renderer/integrator/path_tracer.h"
+
+namespace vesper {
+
+// One connection to the camera: `value` lands at raster point (fx, fy) and
+// is spread over the pixels by the film's filter (filter_splat).
+struct CameraSplat {
+  float fx = 0, fy = 0;
+  Rgb value;
+  size_t light = 0;
+  FirstEvent kind = FirstEvent::Volume;  // the camera path's first event: Volume or Diffuse
+};
+
+// Traces one light subpath and appends its camera connections to `out`.
+// The splats' filtered sum in a pixel estimates that pixel (the camera's
+// importance covers the whole raster): the film divides by the number of
+// subpaths. Pinhole camera, no motion blur (light_tracing_applies).
+void trace_light_path(const Scene& scene, const PathTracerOptions& options, Sampler& sampler,
+                      uint32_t& rays, std::vector<CameraSplat>& out);
+
+// Whether a camera path's first event at a surface of this BSDF leaves the
+// path to the light tracer (as one in a medium does): diffuse surfaces,
+// whose light the light tracer spreads evenly; glossy ones stay with the
+// camera paths.
+bool first_event_light_traced(const Bsdf& bsdf);
+
+// Whether light tracing can take part: a pinhole camera that does not move,
+// a light that subpaths start at, and media.
+bool light_tracing_applies(const Scene& scene);
+
+// The default (RenderOptions::light_traced_from unset): from how many
+// events, and where, light tracing paid for itself in vesper_volume_bench:
+// where a point or spot light sits inside a scattering medium (point-fog,
+// the lantern in its cloud: the paths near the light, heavy-tailed for
+// camera paths, start there with bounded weights), the camera is outside
+// every medium and no medium emits. Not fog-shafts (its spot above the
+// fog: 1.2x slower at equal error), the smoke (its light outside the
+// voxels), the night room (the camera in the fog, whose nearby splats are
+// fireflies).
+inline constexpr int kLightTracedFrom = 2;
+bool light_tracing_pays_off(const Scene& scene);
+
+// The film filter's weights for a splat at (fx, fy): calls
+// add(pixel x, pixel y, weight) for every pixel whose filter covers it. The
+// weights integrate to 1 over the raster for each pixel, as the pixel's
+// filter-sampled camera rays do.
+template <typename Add>
+void filter_splat(FilterType filter, int width, int height, float fx, float fy, Add&& add);
+
+}  // namespace vesper
+
+#include "renderer/integrator/light_tracer_splat.h"

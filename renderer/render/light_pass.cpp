@@ -1,0 +1,132 @@
+#include "renderer/render/light_pass.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "renderer/integrator/light_tracer.h"
+#include "renderer/sampling/sample_streams.h"
+
+namespace vesper {
+namespace {
+
+// A splat's share of a pixel sum in fixed point with 40 fractional bits:
+// |share| < 2^22 keeps 2^22 of them (kMaxExactSamples) inside an int64.
+// add_to shifts it to ExactSum's 64 fractional bits.
+constexpr int kSplatFractionBits = 40;
+constexpr double kSplatLimit = 4194304.0;  // 2^22
+
+// Light subpaths traced together by one task (they share a splat buffer).
+constexpr uint64_t kSubpathsPerTask = 1024;
+
+}  // namespace
+
+LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
+                         const ChannelLayout& layout, const SamplingPlan& plan, int threads)
+    : layout_(layout), pixels_(size_t(scene.film.width) * size_t(scene.film.height)) {
+  const int groups = int(scene.group_names.size());
+  outputs_of_bin_.resize(size_t(kFirstEventKinds * 2 * groups));
+  outputs_.push_back(0);
+  for (size_t b = 0; b < outputs_of_bin_.size(); ++b) outputs_of_bin_[b].push_back(0);
+  for (const BinOutput& o : layout.bin_outputs) {
+    outputs_.push_back(o.channel);
+    for (size_t b : o.bins) outputs_of_bin_[b].push_back(outputs_.size() - 1);
+  }
+  for (int ch : layout.streamed) {
+    int slot = -1;
+    for (size_t k = 0; k < outputs_.size(); ++k)
+      if (ch >= outputs_[k] && ch < outputs_[k] + 3) slot = int(k * 3) + (ch - outputs_[k]);
+    stream_slot_.push_back(slot);
+  }
+  sums_ = std::vector<std::atomic<int64_t>>(pixels_ * outputs_.size() * 3);
+  if (!layout.streamed.empty())
+    stream_sums_ = std::vector<std::atomic<int64_t>>(pixels_ * size_t(kSampleStreams) *
+                                                     layout.streamed.size());
+
+  const uint64_t total = uint64_t(pixels_) * uint64_t(plan.cap);
+  std::atomic<uint64_t> rays{0}, nonfinite{0};
+  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<uint64_t>(0, (total + kSubpathsPerTask - 1) / kSubpathsPerTask, 1),
+        [&](const tbb::blocked_range<uint64_t>& r) {
+          std::vector<CameraSplat> splats;
+          uint32_t task_rays = 0;
+          uint64_t task_nonfinite = 0;
+          for (uint64_t task = r.begin(); task != r.end(); ++task)
+            for (uint64_t i = task * kSubpathsPerTask;
+                 i < std::min(total, (task + 1) * kSubpathsPerTask); ++i) {
+              // Subpath k of sample index s: its own sampler stream, apart
+              // from every camera sample's (pixel indices below pixels_).
+              const uint64_t s = uint64_t(plan.begin) + i / pixels_;
+              const uint64_t k = i % pixels_;
+              Sampler sampler(plan.seed, pixels_ + k, s);
+              splats.clear();
+              trace_light_path(scene, pt, sampler, task_rays, splats);
+              for (const CameraSplat& sp : splats) {
+                if (!sp.value.is_finite()) {
+                  ++task_nonfinite;
+                  continue;
+                }
+                const size_t bin =
+                    PathRecord::bin(sp.kind, true, scene.light_group[sp.light], groups);
+                filter_splat(scene.film.filter, scene.film.width, scene.film.height, sp.fx, sp.fy,
+                             [&](int x, int y, float w) {
+                               add(size_t(y) * size_t(scene.film.width) + size_t(x),
+                                   sample_stream(s), bin, sp.value * w);
+                             });
+              }
+            }
+          rays += task_rays;
+          nonfinite += task_nonfinite;
+        });
+  });
+  rays_ = rays;
+  nonfinite_ = nonfinite;
+}
+
+void LightSplats::add(size_t pixel, int stream, size_t bin, const Rgb& value) {
+  // Each sample index's subpaths, one per pixel, estimate every pixel
+  // together: a sample's share is the splat over the pixel count.
+  int64_t fixed[3];
+  for (int c = 0; c < 3; ++c) {
+    const double share = double(value[c]) / double(pixels_);
+    fixed[c] = std::abs(share) < kSplatLimit
+                   ? int64_t(std::llround(std::ldexp(share, kSplatFractionBits)))
+                   : 0;
+  }
+  for (size_t o : outputs_of_bin_[bin])
+    for (int c = 0; c < 3; ++c)
+      sums_[(pixel * outputs_.size() + o) * 3 + size_t(c)].fetch_add(fixed[c],
+                                                                     std::memory_order_relaxed);
+  if (stream_sums_.empty()) return;
+  const size_t streamed = layout_.streamed.size();
+  for (size_t j = 0; j < streamed; ++j) {
+    const int slot = stream_slot_[j];
+    if (slot < 0) continue;
+    const size_t o = size_t(slot) / 3;
+    if (std::find(outputs_of_bin_[bin].begin(), outputs_of_bin_[bin].end(), o) ==
+        outputs_of_bin_[bin].end())
+      continue;
+    stream_sums_[(pixel * size_t(kSampleStreams) + size_t(stream)) * streamed + j].fetch_add(
+        fixed[slot % 3], std::memory_order_relaxed);
+  }
+}
+
+void LightSplats::add_to(size_t p, PixelSums px) const {
+  constexpr int kShift = kExactFractionBits - kSplatFractionBits;
+  for (size_t o = 0; o < outputs_.size(); ++o)
+    for (int c = 0; c < 3; ++c)
+      px.sums[size_t(outputs_[o] + c)] +=
+          ExactSum(sums_[(p * outputs_.size() + o) * 3 + size_t(c)].load()) << kShift;
+  if (!px.stream_sums || stream_sums_.empty()) return;
+  const size_t streamed = layout_.streamed.size();
+  for (size_t k = 0; k < size_t(kSampleStreams) * streamed; ++k)
+    px.stream_sums[k] += ExactSum(stream_sums_[p * size_t(kSampleStreams) * streamed + k].load())
+                         << kShift;
+}
+
+}  // namespace vesper

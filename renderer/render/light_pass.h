@@ -1,0 +1,49 @@
+#pragma once
+// The light tracer's pass (integrator/light_tracer.h) over a render's sample
+// range, traced before the camera pass: for each sample index one light
+// subpath per pixel, their camera connections summed per pixel into the
+// beauty and the layers and transport AOVs their paths belong to. The
+// camera pass adds each pixel's splat sums to its own sample sums
+// (add_to), so the pixel is the mean of (camera sample + the splats of that
+// sample index's subpaths), and sample ranges still merge exactly. Internal
+// to render/.
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+#include "renderer/integrator/path_tracer.h"
+#include "renderer/output/film_sums.h"
+#include "renderer/render/channel_layout.h"
+#include "renderer/render/sampling_plan.h"
+
+namespace vesper {
+
+class LightSplats {
+ public:
+  // Traces plan.cap * width * height light subpaths on `threads` threads.
+  LightSplats(const Scene& scene, const PathTracerOptions& pt, const ChannelLayout& layout,
+              const SamplingPlan& plan, int threads);
+
+  // Adds pixel p's splat sums to its sums (and stream sums when px has them).
+  void add_to(size_t p, PixelSums px) const;
+
+  uint64_t rays() const { return rays_; }
+  uint64_t nonfinite() const { return nonfinite_; }  // splats dropped as NaN or Inf
+
+ private:
+  void add(size_t pixel, int stream, size_t bin, const Rgb& value);
+
+  const ChannelLayout& layout_;
+  size_t pixels_ = 0;
+  // Each output RGB the splats reach: its first channel; the beauty first.
+  std::vector<int> outputs_;
+  std::vector<std::vector<size_t>> outputs_of_bin_;  // path-record bin -> outputs_ indices
+  std::vector<int> stream_slot_;  // layout.streamed[j] -> its output channel's slot, or -1
+  // Fixed-point sums (output/exact_sum.h's reasoning: integer addition is
+  // associative, so any thread count gives the same bits): [pixel][slot]
+  // and [pixel][stream][streamed channel].
+  std::vector<std::atomic<int64_t>> sums_, stream_sums_;
+  uint64_t rays_ = 0, nonfinite_ = 0;
+};
+
+}  // namespace vesper
