@@ -25,7 +25,8 @@ constexpr uint64_t kSubpathsPerTask = 1024;
 }  // namespace
 
 LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
-                         const ChannelLayout& layout, const SamplingPlan& plan, int threads)
+                         const ChannelLayout& layout, const SamplingPlan& plan, int threads,
+                         const std::function<void(uint64_t)>& progress)
     : layout_(layout), pixels_(size_t(scene.film.width) * size_t(scene.film.height)) {
   const int groups = int(scene.group_names.size());
   outputs_of_bin_.resize(size_t(kFirstEventKinds * 2 * groups));
@@ -54,11 +55,11 @@ LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
         tbb::blocked_range<uint64_t>(0, (total + kSubpathsPerTask - 1) / kSubpathsPerTask, 1),
         [&](const tbb::blocked_range<uint64_t>& r) {
           std::vector<CameraSplat> splats;
-          uint32_t task_rays = 0;
-          uint64_t task_nonfinite = 0;
-          for (uint64_t task = r.begin(); task != r.end(); ++task)
-            for (uint64_t i = task * kSubpathsPerTask;
-                 i < std::min(total, (task + 1) * kSubpathsPerTask); ++i) {
+          for (uint64_t task = r.begin(); task != r.end(); ++task) {
+            uint32_t task_rays = 0;  // at most 1024 subpaths' rays
+            uint64_t task_nonfinite = 0;
+            const uint64_t end = std::min(total, (task + 1) * kSubpathsPerTask);
+            for (uint64_t i = task * kSubpathsPerTask; i < end; ++i) {
               // Subpath k of sample index s: its own sampler stream, apart
               // from every camera sample's (pixel indices below pixels_).
               const uint64_t s = uint64_t(plan.begin) + i / pixels_;
@@ -80,8 +81,10 @@ LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
                              });
               }
             }
-          rays += task_rays;
-          nonfinite += task_nonfinite;
+            rays += task_rays;
+            nonfinite += task_nonfinite;
+            progress(end - task * kSubpathsPerTask);
+          }
         });
   });
   rays_ = rays;

@@ -9,6 +9,7 @@
 // to render/.
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "renderer/integrator/path_tracer.h"
@@ -20,9 +21,10 @@ namespace vesper {
 
 class LightSplats {
  public:
-  // Traces plan.cap * width * height light subpaths on `threads` threads.
+  // Traces plan.cap * width * height light subpaths on `threads` threads;
+  // `progress(n)` is called (from worker threads) as each n more are done.
   LightSplats(const Scene& scene, const PathTracerOptions& pt, const ChannelLayout& layout,
-              const SamplingPlan& plan, int threads);
+              const SamplingPlan& plan, int threads, const std::function<void(uint64_t)>& progress);
 
   // Adds pixel p's splat sums to its sums (and stream sums when px has them).
   void add_to(size_t p, PixelSums px) const;

@@ -283,18 +283,21 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             (img.height + kTileSize - 1) / kTileSize};
   pass.targets = options.pixel_samples;
   pass.uniform_target = plan.cap;
-  std::optional<LightSplats> splats;
-  if (pt.light_traced_from > 0) {
-    splats.emplace(scene, pt, layout, plan, options.threads);
-    pass.splats = &*splats;
-  }
-  // Progress in camera samples, against the most the range allows.
-  const uint64_t most = uint64_t(pixels) * uint64_t(plan.cap);
+  // Progress in camera samples, against the most the range allows, after
+  // as many light subpaths when light tracing runs.
+  const uint64_t camera_most = uint64_t(pixels) * uint64_t(plan.cap);
+  const uint64_t most = camera_most * (pt.light_traced_from > 0 ? 2 : 1);
   std::atomic<uint64_t> done{0};
-  auto after_tile = [&](const SampleCounts& n) {
-    const uint64_t d = done += n.camera_samples;
+  auto report = [&](uint64_t n) {
+    const uint64_t d = done += n;
     if (options.on_progress) options.on_progress(size_t(std::min(d, most)), size_t(most));
   };
+  std::optional<LightSplats> splats;
+  if (pt.light_traced_from > 0) {
+    splats.emplace(scene, pt, layout, plan, options.threads, report);
+    pass.splats = &*splats;
+  }
+  auto after_tile = [&](const SampleCounts& n) { report(n.camera_samples); };
 
   SampleCounts counts;
   if (!options.keep_sums && !plan.multipass()) {
