@@ -13,12 +13,6 @@
 namespace vesper {
 namespace {
 
-// A splat's share of a pixel sum in fixed point with 40 fractional bits:
-// |share| < 2^22 keeps 2^22 of them (kMaxExactSamples) inside an int64.
-// add_to shifts it to ExactSum's 64 fractional bits.
-constexpr int kSplatFractionBits = 40;
-constexpr double kSplatLimit = 4194304.0;  // 2^22
-
 // Light subpaths traced together by one task (they share a splat buffer).
 constexpr uint64_t kSubpathsPerTask = 1024;
 
@@ -42,10 +36,10 @@ LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
       if (ch >= outputs_[k] && ch < outputs_[k] + 3) slot = int(k * 3) + (ch - outputs_[k]);
     stream_slot_.push_back(slot);
   }
-  sums_ = std::vector<std::atomic<int64_t>>(pixels_ * outputs_.size() * 3);
+  sums_ = std::vector<AtomicExactSum>(pixels_ * outputs_.size() * 3);
   if (!layout.streamed.empty())
-    stream_sums_ = std::vector<std::atomic<int64_t>>(pixels_ * size_t(kSampleStreams) *
-                                                     layout.streamed.size());
+    stream_sums_ =
+        std::vector<AtomicExactSum>(pixels_ * size_t(kSampleStreams) * layout.streamed.size());
 
   const uint64_t total = uint64_t(pixels_) * uint64_t(plan.cap);
   std::atomic<uint64_t> rays{0}, nonfinite{0};
@@ -93,18 +87,13 @@ LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
 
 void LightSplats::add(size_t pixel, int stream, size_t bin, const Rgb& value) {
   // Each sample index's subpaths, one per pixel, estimate every pixel
-  // together: a sample's share is the splat over the pixel count.
-  int64_t fixed[3];
-  for (int c = 0; c < 3; ++c) {
-    const double share = double(value[c]) / double(pixels_);
-    fixed[c] = std::abs(share) < kSplatLimit
-                   ? int64_t(std::llround(std::ldexp(share, kSplatFractionBits)))
-                   : 0;
-  }
+  // together: a sample's share is the splat over the pixel count, turned
+  // into fixed point as a camera sample is.
+  ExactSum fixed[3];
+  const float per_pixel = 1.f / float(pixels_);
+  for (int c = 0; c < 3; ++c) fixed[c] = to_fixed(value[c] * per_pixel);
   for (size_t o : outputs_of_bin_[bin])
-    for (int c = 0; c < 3; ++c)
-      sums_[(pixel * outputs_.size() + o) * 3 + size_t(c)].fetch_add(fixed[c],
-                                                                     std::memory_order_relaxed);
+    for (int c = 0; c < 3; ++c) sums_[(pixel * outputs_.size() + o) * 3 + size_t(c)].add(fixed[c]);
   if (stream_sums_.empty()) return;
   const size_t streamed = layout_.streamed.size();
   for (size_t j = 0; j < streamed; ++j) {
@@ -114,22 +103,19 @@ void LightSplats::add(size_t pixel, int stream, size_t bin, const Rgb& value) {
     if (std::find(outputs_of_bin_[bin].begin(), outputs_of_bin_[bin].end(), o) ==
         outputs_of_bin_[bin].end())
       continue;
-    stream_sums_[(pixel * size_t(kSampleStreams) + size_t(stream)) * streamed + j].fetch_add(
-        fixed[slot % 3], std::memory_order_relaxed);
+    stream_sums_[(pixel * size_t(kSampleStreams) + size_t(stream)) * streamed + j].add(
+        fixed[slot % 3]);
   }
 }
 
 void LightSplats::add_to(size_t p, PixelSums px) const {
-  constexpr int kShift = kExactFractionBits - kSplatFractionBits;
   for (size_t o = 0; o < outputs_.size(); ++o)
     for (int c = 0; c < 3; ++c)
-      px.sums[size_t(outputs_[o] + c)] +=
-          ExactSum(sums_[(p * outputs_.size() + o) * 3 + size_t(c)].load()) << kShift;
+      px.sums[size_t(outputs_[o] + c)] += sums_[(p * outputs_.size() + o) * 3 + size_t(c)].load();
   if (!px.stream_sums || stream_sums_.empty()) return;
   const size_t streamed = layout_.streamed.size();
   for (size_t k = 0; k < size_t(kSampleStreams) * streamed; ++k)
-    px.stream_sums[k] += ExactSum(stream_sums_[p * size_t(kSampleStreams) * streamed + k].load())
-                         << kShift;
+    px.stream_sums[k] += stream_sums_[p * size_t(kSampleStreams) * streamed + k].load();
 }
 
 }  // namespace vesper

@@ -7,12 +7,12 @@
 // (add_to), so the pixel is the mean of (camera sample + the splats of that
 // sample index's subpaths), and sample ranges still merge exactly. Internal
 // to render/.
-#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "renderer/integrator/path_tracer.h"
+#include "renderer/output/atomic_exact_sum.h"
 #include "renderer/output/film_sums.h"
 #include "renderer/render/channel_layout.h"
 #include "renderer/render/sampling_plan.h"
@@ -41,10 +41,9 @@ class LightSplats {
   std::vector<int> outputs_;
   std::vector<std::vector<size_t>> outputs_of_bin_;  // path-record bin -> outputs_ indices
   std::vector<int> stream_slot_;  // layout.streamed[j] -> its output channel's slot, or -1
-  // Fixed-point sums (output/exact_sum.h's reasoning: integer addition is
-  // associative, so any thread count gives the same bits): [pixel][slot]
-  // and [pixel][stream][streamed channel].
-  std::vector<std::atomic<int64_t>> sums_, stream_sums_;
+  // Exact sums that the threads add to (any thread count gives the same
+  // bits): [pixel][slot] and [pixel][stream][streamed channel].
+  std::vector<AtomicExactSum> sums_, stream_sums_;
   uint64_t rays_ = 0, nonfinite_ = 0;
 };
 
