@@ -16,6 +16,7 @@
 #include "renderer/core/rigid_motion.h"
 #include "renderer/render/render.h"
 #include "renderer/scene/scene_loader.h"
+#include "tests/renderer/range_merge.h"
 #include "tests/renderer/render_stats.h"
 
 namespace vesper {
@@ -386,15 +387,7 @@ TEST(MotionBlur, BitwiseIdenticalForOneAndTwoThreads) {
 }
 
 TEST(MotionBlur, SampleRangesMergeBitwiseToTheFullRender) {
-  const Scene scene = load(moving_room());
-  RenderOptions full, first, second;
-  full.keep_sums = first.keep_sums = second.keep_sums = true;
-  first.sample_end = 3;
-  second.sample_begin = 3;
-  const RenderResult f = render(scene, full), a = render(scene, first), b = render(scene, second);
-  ASSERT_EQ(a.film.sums.size(), f.film.sums.size());
-  for (size_t i = 0; i < f.film.sums.size(); ++i)
-    ASSERT_TRUE(a.film.sums[i] + b.film.sums[i] == f.film.sums[i]) << i;
+  test::expect_ranges_merge_bitwise(load(moving_room()), RenderOptions{}, 3);
 }
 
 TEST(MotionBlur, StepsFollowTheKeys) {
