@@ -43,10 +43,13 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   const std::optional<double> clamp = options.clamp ? options.clamp : scene.render.clamp;
   pt.indirect_clamp = float(clamp.value_or(0.0));
   // Light tracing adds its splats to a fixed sample count per pixel: not
-  // to adaptive renders, whose pixels stop at different counts.
+  // to adaptive renders, whose pixels stop at different counts. Nor with
+  // the indirect clamp, which bounds each camera sample's indirect light:
+  // splats would bypass it.
   const int from =
       options.light_traced_from.value_or(light_tracing_pays_off(scene) ? kLightTracedFrom : 0);
-  if (from > 0 && light_tracing_applies(scene) && !plan.multipass() && !options.pixel_samples) {
+  if (from > 0 && light_tracing_applies(scene) && !plan.multipass() && !options.pixel_samples &&
+      !(pt.indirect_clamp > 0.f)) {
     pt.light_traced_from = std::max(2, from);
     pt.light_traced_all = !scene.media.has_emission();
     for (size_t i = 0; i < scene.lights.size(); ++i)

@@ -69,7 +69,8 @@ struct RenderOptions {
   // event is in a medium or on a diffuse surface and that make at least this
   // many scattering events (>= 2; PathTracerOptions::light_traced_from);
   // 0 = off; unset: where it pays off (light_tracing_pays_off). Fixed
-  // sample counts only: adaptive renders and pixel_samples leave it off.
+  // sample counts only: adaptive renders and pixel_samples leave it off, as
+  // does the indirect clamp (splats would bypass it).
   std::optional<int> light_traced_from;
   // Ranks per Cryptomatte type (Aov::Cryptomatte): (depth + 1) / 2 RGBA layers
   // each, in [1, kMaxCryptoDepth] (std::invalid_argument otherwise).

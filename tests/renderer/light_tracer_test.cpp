@@ -4,6 +4,7 @@
 // mergeable; and it runs only where it paid off.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "estimator_agreement.h"
@@ -113,6 +114,27 @@ TEST(LightTracing, SampleRangesMergeBitwiseToTheFullRender) {
   full.spp = 7;
   full.layer_variance = true;
   expect_ranges_merge_bitwise(build_scene(d), full, 3);
+}
+
+TEST(LightTracing, StaysOffUnderTheIndirectClamp) {
+  // render.clamp bounds each camera sample's indirect light; splats are not
+  // camera samples, so light tracing must not run (or pixels of an indirect
+  // AOV would pass the clamp).
+  SceneDescription d = fog_pool_scene(FilterType::Box);
+  d.render.aovs = {Aov::VolumeIndirect};
+  const Scene scene = build_scene(d);
+  RenderOptions o = traced_from(2);
+  o.spp = 8;
+  o.clamp = 0.02;
+  const LayeredImage img = render(scene, o).image;
+  const int c = img.channel_index("volume_indirect.R");
+  ASSERT_GE(c, 0);
+  float peak = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int k = 0; k < 3; ++k) peak = std::max(peak, img.at(x, y, size_t(c + k)));
+  EXPECT_LE(peak, 0.02f * (1 + 1e-5f));
+  EXPECT_GT(peak, 0.f);
 }
 
 TEST(LightTracing, RunsByDefaultWhereALightSitsInTheFog) {
