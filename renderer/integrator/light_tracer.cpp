@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
+#include <variant>
 
 #include "renderer/integrator/direct_lighting.h"
 #include "renderer/integrator/light_vertex.h"
@@ -52,6 +54,16 @@ void connect_to_camera(const Scene& scene, const Vec3& y, const Rgb& flux, size_
   const float importance = float(cam.width) * float(cam.height) /
                            (4.f * cam.tan_half_x * cam.tan_half_y * cos * cos * cos);
   out.push_back({fx, fy, flux * tr * f * (importance / d2), light, kind});
+}
+
+// BSDF values are for radiance (bsdf.h): a refraction divides by eta'^2,
+// the ratio of the indices, because radiance is compressed into a smaller
+// solid angle. The light's flux is not (Veach 1997, section 5.2): undone here.
+float importance_scale(const Bsdf& bsdf, const Vec3& wo, const BsdfSample& s) {
+  const auto* glass = std::get_if<DielectricBsdf>(&bsdf);
+  if (!glass || !s.is_transmission) return 1.f;
+  const float etap = wo.z > 0.f ? glass->eta : 1.f / glass->eta;
+  return etap * etap;
 }
 
 }  // namespace
@@ -112,10 +124,10 @@ void trace_light_path(const Scene& scene, const PathTracerOptions& options, Samp
       const Vec3 wi = phase.sample(-ray.dir, sampler.next2());  // f / pdf = 1
       ray = Ray{y, wi, kInfinity, 0.f};
     } else {
-      // A surface: the subpath goes on by BSDF sampling. Light arrives
-      // along ray.dir and leaves along the sampled direction; the BSDFs
-      // here are symmetric in their arguments except through shading
-      // normals, which quads and spheres do not have.
+      // A surface: the subpath goes on by BSDF sampling, light arriving
+      // along ray.dir and leaving along the sampled direction. Vesper
+      // shades with the geometric normal (bsdf_shading_normal), so the
+      // BSDFs are symmetric but for refraction (importance_scale).
       const Bsdf& bsdf = scene.materials[hit->material];
       if (events >= options.light_traced_from && first_event_light_traced(bsdf))
         connect_to_camera(scene, y, flux * beta, start->light, FirstEvent::Diffuse, sampler, rays,
@@ -134,7 +146,7 @@ void trace_light_path(const Scene& scene, const PathTracerOptions& options, Samp
       const float uc = sampler.next1();
       const auto bs = bsdf_sample(bsdf, wo, uc, sampler.next2());
       if (!bs || bs->pdf <= 0.f || bs->f.is_black()) return;
-      beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+      beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf * importance_scale(bsdf, wo, *bs));
       const Vec3 wi = normalize(frame.to_world(bs->wi));
       const Vec3 n_off = dot(wi, hit->n) >= 0.f ? hit->n : -hit->n;
       ray = Ray{offset_ray_origin(hit->p, n_off), wi, kInfinity, 0.f};

@@ -1,17 +1,16 @@
 #pragma once
 // Light tracing (the t = 1 strategy of bidirectional path tracing): light
-// subpaths from point and spot lights, each medium vertex connected to the
-// camera. It takes a fixed part of path space, which the camera paths then
-// leave out (PathTracerOptions::light_traced_from): paths whose first event
-// after the camera is in a medium, with at least that many scattering
+// subpaths from point and spot lights, each medium and diffuse-surface
+// vertex connected to the camera. It takes a fixed part of path space,
+// which the camera paths then leave out (PathTracerOptions::
+// light_traced_from): paths whose first event after the camera is in a
+// medium or on a diffuse surface, with at least that many scattering
 // events, from a light that light subpaths start at (light_is_traced). In
 // fog lit by a small light these are the random walk's deep paths, whose
 // camera-side estimate is the noise that is left (bench/README.md); a light
 // subpath reaches many pixels with bounded contributions (no 1 / r^2 at the
 // light, the camera outside the fog).
 #include <vector>
-
-#include "renderer/integrator/path_record.h"
 
 #include "renderer/integrator/path_tracer.h"
 

@@ -17,11 +17,9 @@ inline float truncated_gaussian_density(float x) {
 
 template <typename Add>
 void filter_splat(FilterType filter, int width, int height, float fx, float fy, Add&& add) {
-  if (!(fx >= 0.f && fy >= 0.f && fx < float(width) && fy < float(height))) {
-    if (filter == FilterType::Box) return;
-  }
   if (filter == FilterType::Box) {
-    add(int(fx), int(fy), 1.f);
+    if (fx >= 0.f && fy >= 0.f && fx < float(width) && fy < float(height))
+      add(int(fx), int(fy), 1.f);
     return;
   }
   const int x0 = int(std::floor(fx - 0.5f - kGaussianRadius)),
