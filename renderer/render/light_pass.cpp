@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "renderer/integrator/light_tracer.h"
+#include "renderer/integrator/light_vertex.h"
 #include "renderer/sampling/sample_streams.h"
 
 namespace vesper {
@@ -24,9 +25,19 @@ LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
     : layout_(layout), pixels_(size_t(scene.film.width) * size_t(scene.film.height)) {
   const int groups = int(scene.group_names.size());
   outputs_of_bin_.resize(size_t(kFirstEventKinds * 2 * groups));
+  // The bins splats land in: indirect, first event in a medium or on a
+  // diffuse surface, a traced light's group. Outputs without any of them
+  // (direct light, specular AOVs, layers of other lights) get no sums.
+  std::vector<bool> splat_bin(outputs_of_bin_.size(), false);
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (light_is_traced(scene, i))
+      for (FirstEvent kind : {FirstEvent::Volume, FirstEvent::Diffuse})
+        splat_bin[PathRecord::bin(kind, true, scene.light_group[i], groups)] = true;
   outputs_.push_back(0);
   for (size_t b = 0; b < outputs_of_bin_.size(); ++b) outputs_of_bin_[b].push_back(0);
   for (const BinOutput& o : layout.bin_outputs) {
+    if (std::none_of(o.bins.begin(), o.bins.end(), [&](size_t b) { return splat_bin[b]; }))
+      continue;
     outputs_.push_back(o.channel);
     for (size_t b : o.bins) outputs_of_bin_[b].push_back(outputs_.size() - 1);
   }
@@ -35,11 +46,11 @@ LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
     for (size_t k = 0; k < outputs_.size(); ++k)
       if (ch >= outputs_[k] && ch < outputs_[k] + 3) slot = int(k * 3) + (ch - outputs_[k]);
     stream_slot_.push_back(slot);
+    if (slot >= 0) stream_index_.push_back(stream_slot_.size() - 1);
   }
   sums_ = std::vector<AtomicExactSum>(pixels_ * outputs_.size() * 3);
-  if (!layout.streamed.empty())
-    stream_sums_ =
-        std::vector<AtomicExactSum>(pixels_ * size_t(kSampleStreams) * layout.streamed.size());
+  stream_sums_ =
+      std::vector<AtomicExactSum>(pixels_ * size_t(kSampleStreams) * stream_index_.size());
 
   const uint64_t total = uint64_t(pixels_) * uint64_t(plan.cap);
   std::atomic<uint64_t> rays{0}, nonfinite{0};
@@ -94,17 +105,14 @@ void LightSplats::add(size_t pixel, int stream, size_t bin, const Rgb& value) {
   for (int c = 0; c < 3; ++c) fixed[c] = to_fixed(value[c] * per_pixel);
   for (size_t o : outputs_of_bin_[bin])
     for (int c = 0; c < 3; ++c) sums_[(pixel * outputs_.size() + o) * 3 + size_t(c)].add(fixed[c]);
-  if (stream_sums_.empty()) return;
-  const size_t streamed = layout_.streamed.size();
-  for (size_t j = 0; j < streamed; ++j) {
-    const int slot = stream_slot_[j];
-    if (slot < 0) continue;
+  const size_t n = stream_index_.size();
+  for (size_t k = 0; k < n; ++k) {
+    const int slot = stream_slot_[stream_index_[k]];
     const size_t o = size_t(slot) / 3;
     if (std::find(outputs_of_bin_[bin].begin(), outputs_of_bin_[bin].end(), o) ==
         outputs_of_bin_[bin].end())
       continue;
-    stream_sums_[(pixel * size_t(kSampleStreams) + size_t(stream)) * streamed + j].add(
-        fixed[slot % 3]);
+    stream_sums_[(pixel * size_t(kSampleStreams) + size_t(stream)) * n + k].add(fixed[slot % 3]);
   }
 }
 
@@ -112,10 +120,12 @@ void LightSplats::add_to(size_t p, PixelSums px) const {
   for (size_t o = 0; o < outputs_.size(); ++o)
     for (int c = 0; c < 3; ++c)
       px.sums[size_t(outputs_[o] + c)] += sums_[(p * outputs_.size() + o) * 3 + size_t(c)].load();
-  if (!px.stream_sums || stream_sums_.empty()) return;
-  const size_t streamed = layout_.streamed.size();
-  for (size_t k = 0; k < size_t(kSampleStreams) * streamed; ++k)
-    px.stream_sums[k] += stream_sums_[p * size_t(kSampleStreams) * streamed + k].load();
+  if (!px.stream_sums) return;
+  const size_t streamed = layout_.streamed.size(), n = stream_index_.size();
+  for (size_t s = 0; s < size_t(kSampleStreams); ++s)
+    for (size_t k = 0; k < n; ++k)
+      px.stream_sums[s * streamed + stream_index_[k]] +=
+          stream_sums_[(p * size_t(kSampleStreams) + s) * n + k].load();
 }
 
 }  // namespace vesper

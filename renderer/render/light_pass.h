@@ -40,9 +40,12 @@ class LightSplats {
   // Each output RGB the splats reach: its first channel; the beauty first.
   std::vector<int> outputs_;
   std::vector<std::vector<size_t>> outputs_of_bin_;  // path-record bin -> outputs_ indices
-  std::vector<int> stream_slot_;  // layout.streamed[j] -> its output channel's slot, or -1
+  std::vector<int> stream_slot_;      // layout.streamed[j] -> its output channel's slot, or -1
+  std::vector<size_t> stream_index_;  // the j with a slot, in order: stream_sums_' columns
   // Exact sums that the threads add to (any thread count gives the same
-  // bits): [pixel][slot] and [pixel][stream][streamed channel].
+  // bits): [pixel][slot] and [pixel][stream][stream_index_]. 24 bytes
+  // each: 72 per pixel for the beauty, as much for each indirect AOV or
+  // layer splats reach, 4 times that for each such channel streamed.
   std::vector<AtomicExactSum> sums_, stream_sums_;
   uint64_t rays_ = 0, nonfinite_ = 0;
 };

@@ -116,6 +116,29 @@ TEST(LightTracing, SampleRangesMergeBitwiseToTheFullRender) {
   expect_ranges_merge_bitwise(build_scene(d), full, 3);
 }
 
+TEST(LightTracing, StreamSumsAddUpToTheirChannels) {
+  // Each streamed channel's stream sums must add up to its sum, splats
+  // included: volume_direct gets no splats (and no splat sums), the beauty
+  // and volume_indirect do, in their own columns.
+  SceneDescription d = fog_pool_scene(FilterType::Gaussian);
+  d.render.aovs = {Aov::VolumeDirect, Aov::VolumeIndirect, Aov::Variance};
+  RenderOptions o = traced_from(2);
+  o.spp = 6;
+  o.keep_sums = true;
+  o.layer_variance = true;
+  const FilmSums film = render(build_scene(d), o).film;
+  ASSERT_GE(film.streamed.size(), 9u);
+  const size_t nc = film.channels.size(), ns = film.streamed.size();
+  for (size_t p = 0; p < film.pixel_count(); ++p)
+    for (size_t j = 0; j < ns; ++j) {
+      ExactSum total = 0;
+      for (size_t s = 0; s < size_t(kSampleStreams); ++s)
+        total += film.stream_sums[(p * kSampleStreams + s) * ns + j];
+      ASSERT_TRUE(total == film.sums[p * nc + size_t(film.streamed[j])])
+          << "pixel " << p << " channel " << film.channels[size_t(film.streamed[j])];
+    }
+}
+
 TEST(LightTracing, StaysOffUnderTheIndirectClamp) {
   // render.clamp bounds each camera sample's indirect light; splats are not
   // camera samples, so light tracing must not run (or pixels of an indirect
