@@ -12,6 +12,7 @@
 #include "renderer/integrator/volume_tracking.h"
 #include "renderer/math/frame.h"
 #include "renderer/media/henyey_greenstein.h"
+#include "renderer/sampling/pixel_filter.h"
 
 namespace vesper {
 namespace {
@@ -82,6 +83,13 @@ bool light_tracing_pays_off(const Scene& scene) {
         !scene.media.coefficients(*scene.light_sampler.bounds()[i]->aim()).sigma_s.is_black())
       return true;
   return false;
+}
+
+bool light_tracing_takes_every_light(const Scene& scene) {
+  if (scene.media.has_emission()) return false;
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (!light_is_traced(scene, i)) return false;
+  return true;
 }
 
 bool light_tracing_applies(const Scene& scene) {

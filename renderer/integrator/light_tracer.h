@@ -17,7 +17,8 @@
 namespace vesper {
 
 // One connection to the camera: `value` lands at raster point (fx, fy) and
-// is spread over the pixels by the film's filter (filter_splat).
+// is spread over the pixels by the film's filter (filter_splat,
+// light_tracer_splat.h).
 struct CameraSplat {
   float fx = 0, fy = 0;
   Rgb value;
@@ -54,13 +55,9 @@ bool light_tracing_applies(const Scene& scene);
 inline constexpr int kLightTracedFrom = 2;
 bool light_tracing_pays_off(const Scene& scene);
 
-// The film filter's weights for a splat at (fx, fy): calls
-// add(pixel x, pixel y, weight) for every pixel whose filter covers it. The
-// weights integrate to 1 over the raster for each pixel, as the pixel's
-// filter-sampled camera rays do.
-template <typename Add>
-void filter_splat(FilterType filter, int width, int height, float fx, float fy, Add&& add);
+// Whether light subpaths start at every light and no medium emits: camera
+// paths left with only light-traced paths can end
+// (PathTracerOptions::light_traced_all).
+bool light_tracing_takes_every_light(const Scene& scene);
 
 }  // namespace vesper
-
-#include "renderer/integrator/light_tracer_splat.h"

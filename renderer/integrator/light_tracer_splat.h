@@ -1,5 +1,6 @@
 #pragma once
-// filter_splat (light_tracer.h): the film filter's weights around a splat.
+// The film filter's weights around a light tracer's splat (light_tracer.h).
+#include <algorithm>
 #include <cmath>
 
 #include "renderer/sampling/pixel_filter.h"
@@ -15,6 +16,9 @@ inline float truncated_gaussian_density(float x) {
   return std::exp(-x * x / (2.f * kGaussianSigma * kGaussianSigma)) / norm;
 }
 
+// Calls add(pixel x, pixel y, weight) for every pixel whose filter covers
+// raster point (fx, fy). The weights integrate to 1 over the raster for each
+// pixel, as the pixel's filter-sampled camera rays do.
 template <typename Add>
 void filter_splat(FilterType filter, int width, int height, float fx, float fy, Add&& add) {
   if (filter == FilterType::Box) {

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "renderer/integrator/light_tracer.h"
+#include "renderer/integrator/light_tracer_splat.h"
 #include "renderer/integrator/light_vertex.h"
 #include "renderer/sampling/sample_streams.h"
 
@@ -22,7 +23,7 @@ constexpr uint64_t kSubpathsPerTask = 1024;
 LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
                          const ChannelLayout& layout, const SamplingPlan& plan, int threads,
                          const std::function<void(uint64_t)>& progress)
-    : layout_(layout), pixels_(size_t(scene.film.width) * size_t(scene.film.height)) {
+    : pixels_(size_t(scene.film.width) * size_t(scene.film.height)) {
   const int groups = int(scene.group_names.size());
   outputs_of_bin_.resize(size_t(kFirstEventKinds * 2 * groups));
   // The bins splats land in: indirect, first event in a medium or on a
@@ -41,16 +42,19 @@ LightSplats::LightSplats(const Scene& scene, const PathTracerOptions& pt,
     outputs_.push_back(o.channel);
     for (size_t b : o.bins) outputs_of_bin_[b].push_back(outputs_.size() - 1);
   }
-  for (int ch : layout.streamed) {
-    int slot = -1;
-    for (size_t k = 0; k < outputs_.size(); ++k)
-      if (ch >= outputs_[k] && ch < outputs_[k] + 3) slot = int(k * 3) + (ch - outputs_[k]);
-    stream_slot_.push_back(slot);
-    if (slot >= 0) stream_index_.push_back(stream_slot_.size() - 1);
-  }
+  // Streamed channels the splats reach get a stream-sum column each.
+  column_of_slot_.assign(outputs_.size() * 3, -1);
+  for (size_t j = 0; j < layout.streamed.size(); ++j)
+    for (size_t k = 0; k < outputs_.size(); ++k) {
+      const int c = layout.streamed[j] - outputs_[k];
+      if (c < 0 || c > 2) continue;
+      column_of_slot_[k * 3 + size_t(c)] = int(streamed_of_column_.size());
+      streamed_of_column_.push_back(j);
+    }
+  streamed_ = layout.streamed.size();
   sums_ = std::vector<AtomicExactSum>(pixels_ * outputs_.size() * 3);
   stream_sums_ =
-      std::vector<AtomicExactSum>(pixels_ * size_t(kSampleStreams) * stream_index_.size());
+      std::vector<AtomicExactSum>(pixels_ * size_t(kSampleStreams) * streamed_of_column_.size());
 
   const uint64_t total = uint64_t(pixels_) * uint64_t(plan.cap);
   std::atomic<uint64_t> rays{0}, nonfinite{0};
@@ -103,17 +107,15 @@ void LightSplats::add(size_t pixel, int stream, size_t bin, const Rgb& value) {
   ExactSum fixed[3];
   const float per_pixel = 1.f / float(pixels_);
   for (int c = 0; c < 3; ++c) fixed[c] = to_fixed(value[c] * per_pixel);
+  const size_t columns = streamed_of_column_.size();
   for (size_t o : outputs_of_bin_[bin])
-    for (int c = 0; c < 3; ++c) sums_[(pixel * outputs_.size() + o) * 3 + size_t(c)].add(fixed[c]);
-  const size_t n = stream_index_.size();
-  for (size_t k = 0; k < n; ++k) {
-    const int slot = stream_slot_[stream_index_[k]];
-    const size_t o = size_t(slot) / 3;
-    if (std::find(outputs_of_bin_[bin].begin(), outputs_of_bin_[bin].end(), o) ==
-        outputs_of_bin_[bin].end())
-      continue;
-    stream_sums_[(pixel * size_t(kSampleStreams) + size_t(stream)) * n + k].add(fixed[slot % 3]);
-  }
+    for (size_t c = 0; c < 3; ++c) {
+      const size_t slot = o * 3 + c;
+      sums_[pixel * outputs_.size() * 3 + slot].add(fixed[c]);
+      if (const int col = column_of_slot_[slot]; col >= 0)
+        stream_sums_[(pixel * size_t(kSampleStreams) + size_t(stream)) * columns + size_t(col)].add(
+            fixed[c]);
+    }
 }
 
 void LightSplats::add_to(size_t p, PixelSums px) const {
@@ -121,11 +123,11 @@ void LightSplats::add_to(size_t p, PixelSums px) const {
     for (int c = 0; c < 3; ++c)
       px.sums[size_t(outputs_[o] + c)] += sums_[(p * outputs_.size() + o) * 3 + size_t(c)].load();
   if (!px.stream_sums) return;
-  const size_t streamed = layout_.streamed.size(), n = stream_index_.size();
+  const size_t columns = streamed_of_column_.size();
   for (size_t s = 0; s < size_t(kSampleStreams); ++s)
-    for (size_t k = 0; k < n; ++k)
-      px.stream_sums[s * streamed + stream_index_[k]] +=
-          stream_sums_[(p * size_t(kSampleStreams) + s) * n + k].load();
+    for (size_t k = 0; k < columns; ++k)
+      px.stream_sums[s * streamed_ + streamed_of_column_[k]] +=
+          stream_sums_[(p * size_t(kSampleStreams) + s) * columns + k].load();
 }
 
 }  // namespace vesper

@@ -35,15 +35,15 @@ class LightSplats {
  private:
   void add(size_t pixel, int stream, size_t bin, const Rgb& value);
 
-  const ChannelLayout& layout_;
-  size_t pixels_ = 0;
+  size_t pixels_ = 0, streamed_ = 0;  // streamed_: layout.streamed.size()
   // Each output RGB the splats reach: its first channel; the beauty first.
+  // Its channels are slots 3 k, 3 k + 1, 3 k + 2.
   std::vector<int> outputs_;
   std::vector<std::vector<size_t>> outputs_of_bin_;  // path-record bin -> outputs_ indices
-  std::vector<int> stream_slot_;      // layout.streamed[j] -> its output channel's slot, or -1
-  std::vector<size_t> stream_index_;  // the j with a slot, in order: stream_sums_' columns
+  std::vector<int> column_of_slot_;                  // slot -> its stream-sum column, or -1
+  std::vector<size_t> streamed_of_column_;           // column -> its index in layout.streamed
   // Exact sums that the threads add to (any thread count gives the same
-  // bits): [pixel][slot] and [pixel][stream][stream_index_]. 24 bytes
+  // bits): [pixel][slot] and [pixel][stream][column]. 24 bytes
   // each: 72 per pixel for the beauty, as much for each indirect AOV or
   // layer splats reach, 4 times that for each such channel streamed.
   std::vector<AtomicExactSum> sums_, stream_sums_;

@@ -51,9 +51,7 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   if (from > 0 && light_tracing_applies(scene) && !plan.multipass() && !options.pixel_samples &&
       !(pt.indirect_clamp > 0.f)) {
     pt.light_traced_from = std::max(2, from);
-    pt.light_traced_all = !scene.media.has_emission();
-    for (size_t i = 0; i < scene.lights.size(); ++i)
-      if (!light_is_traced(scene, i)) pt.light_traced_all = false;
+    pt.light_traced_all = light_tracing_takes_every_light(scene);
   }
   return pt;
 }
