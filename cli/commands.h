@@ -26,6 +26,10 @@ struct RenderCommandOptions {
   SamplingFlags sampling;
   std::optional<double> scale;  // --scale: film width and height times this
   std::optional<double> clamp;  // --clamp: overrides render.clamp (biased)
+  // --photon-merging / --photon-radius: override render.photon_merging /
+  // render.photon_radius (biased).
+  bool photon_merging = false;
+  std::optional<double> photon_radius;
   bool half = false;            // --half: half-float colour channels, whatever film.pixel_type says
   bool layer_variance = false;  // --layer-variance: <layer>.variance.R/G/B for every RGB layer
   // Frame number: decorrelates the frame's noise from other frames (the seed

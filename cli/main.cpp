@@ -100,6 +100,14 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
                 "Indirect sample clamp (biased, off by default): scale each sample's indirect "
                 "light down to at most this in its largest RGB component; overrides render.clamp")
       ->check(greater_than_zero());
+  r->add_flag("--photon-merging", o->photon_merging,
+              "Photon merging for light scattered more than once in fog from point and spot "
+              "lights (biased but consistent, off by default: blurs that light over a radius); "
+              "overrides render.photon_merging");
+  r->add_option("--photon-radius", o->photon_radius,
+                "Photon merging's radius in scene units (default: from the photon count); "
+                "overrides render.photon_radius")
+      ->check(greater_than_zero());
   r->add_flag("--half", o->half,
               "Write colour channels as half floats (data channels such as depth, normal, "
               "variance and spp stay float32); overrides film.pixel_type");

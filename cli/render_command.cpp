@@ -129,6 +129,8 @@ int render_one(const RenderCommandOptions& o) {
   ro.max_spp = o.sampling.max_spp;
   ro.layer_variance = o.layer_variance;
   ro.clamp = o.clamp;
+  if (o.photon_merging) ro.photon_merging = true;
+  ro.photon_radius = o.photon_radius;
   try {
     check_sampling_options(desc.render, ro);
   } catch (const std::invalid_argument& e) {

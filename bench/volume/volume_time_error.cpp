@@ -37,6 +37,8 @@ struct Config {
   std::optional<bool> light_vertices{};             // default: RenderOptions' automatic choice
   bool sun_shafts = true;
   std::optional<int> light_traced_from{};  // default: RenderOptions' automatic choice
+  bool photon_merging = false;             // opt-in, biased
+  std::optional<double> photon_radius{};   // default: photon_radius's rule
 };
 
 struct Measurement {
@@ -64,6 +66,8 @@ RenderOptions options_for(const Config& c, int spp, int r) {
   o.light_vertices = c.light_vertices;
   o.sun_shafts = c.sun_shafts;
   o.light_traced_from = c.light_traced_from;
+  o.photon_merging = c.photon_merging;
+  o.photon_radius = c.photon_radius;
   return o;
 }
 
@@ -246,10 +250,21 @@ int main(int argc, char** argv) {
   const Config no_lv{.name = "light-vertex connections off", .light_vertices = false};
   const Config lv_on{.name = "light-vertex connections on", .light_vertices = true};
   const Config eq_off{.name = "equiangular off", .equiangular = false};
+  const Config pm{.name = "photon merging (opt-in, biased)", .photon_merging = true};
+  const Config pm_r1{
+      .name = "photon merging, radius 0.025", .photon_merging = true, .photon_radius = 0.025};
+  const Config pm_r2{
+      .name = "photon merging, radius 0.05", .photon_merging = true, .photon_radius = 0.05};
+  const Config pm_r4{
+      .name = "photon merging, radius 0.1", .photon_merging = true, .photon_radius = 0.1};
 
   if (wanted(only, "fog-shafts"))
     run_scene("fog-shafts (homogeneous fog, spot light)", scenes / "fog-shafts/scene.json",
               {{.name = "default"},
+               pm,
+               pm_r1,
+               pm_r2,
+               pm_r4,
                lt_forced,
                no_lv,
                {.name = "equiangular over the whole ray", .equiangular_in_cone = false},
@@ -257,9 +272,10 @@ int main(int argc, char** argv) {
                start},
               {}, quick);
   if (wanted(only, "point-fog"))
-    run_scene("point-fog (homogeneous fog, point light)",
-              root / "bench/scenes/point-fog/scene.json",
-              {{.name = "default"}, lt_3, lt_off, lt_lv_off, eq_off, start}, {}, quick);
+    run_scene(
+        "point-fog (homogeneous fog, point light)", root / "bench/scenes/point-fog/scene.json",
+        {{.name = "default"}, pm, pm_r1, pm_r2, pm_r4, lt_3, lt_off, lt_lv_off, eq_off, start}, {},
+        quick);
   if (wanted(only, "smoke"))
     run_scene("smoke (shared smoke.vdb, quad + point light)", scenes / "smoke/scene.json",
               {{.name = "default (majorant grid, equiangular)"},

@@ -92,6 +92,13 @@ bool light_tracing_takes_every_light(const Scene& scene) {
   return true;
 }
 
+bool photon_merging_applies(const Scene& scene) {
+  if (scene.media.empty() || scene.motion_blur) return false;
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (light_is_traced(scene, i)) return true;
+  return false;
+}
+
 bool light_tracing_applies(const Scene& scene) {
   if (scene.media.empty() || scene.motion_blur || scene.camera.lens_radius > 0.f) return false;
   for (size_t i = 0; i < scene.lights.size(); ++i)
@@ -99,8 +106,16 @@ bool light_tracing_applies(const Scene& scene) {
   return false;
 }
 
-void trace_light_path(const Scene& scene, const PathTracerOptions& options, Sampler& sampler,
-                      uint32_t& rays, std::vector<CameraSplat>& out) {
+namespace {
+
+// One light subpath's random walk: on_medium(y, flux, light, phase, dir)
+// at each scattering vertex in a medium and on_surface(hit, flux, light,
+// bsdf, dir) at each surface it reaches, with `flux` the subpath's weight
+// arriving there and `dir` the direction it arrived along; `events` counts
+// the vertex itself.
+template <typename OnMedium, typename OnSurface>
+void walk_light_path(const Scene& scene, const PathTracerOptions& options, Sampler& sampler,
+                     uint32_t& rays, const OnMedium& on_medium, const OnSurface& on_surface) {
   const std::optional<LightRayStart> start = sample_light_ray(scene, sampler);
   if (!start) return;
   Ray ray{start->origin, start->dir, kInfinity, 0.f};
@@ -123,11 +138,7 @@ void trace_light_path(const Scene& scene, const PathTracerOptions& options, Samp
     }
     if (flight.event == FlightEvent::Scattered) {
       const HgPhase phase{flight.g};
-      if (events >= options.light_traced_from)
-        connect_to_camera(scene, y, flux * beta, start->light, FirstEvent::Volume, sampler, rays,
-                          out, [&](const Vec3& to_cam) {
-                            return std::pair{Rgb(phase.eval(to_cam, -ray.dir)), y};
-                          });
+      on_medium(y, flux * beta, start->light, phase, ray.dir, events);
       if (events == options.max_depth) return;
       const Vec3 wi = phase.sample(-ray.dir, sampler.next2());  // f / pdf = 1
       ray = Ray{y, wi, kInfinity, 0.f};
@@ -137,16 +148,7 @@ void trace_light_path(const Scene& scene, const PathTracerOptions& options, Samp
       // shades with the geometric normal (bsdf_shading_normal), so the
       // BSDFs are symmetric but for refraction (importance_scale).
       const Bsdf& bsdf = scene.materials[hit->material];
-      if (events >= options.light_traced_from && first_event_light_traced(bsdf))
-        connect_to_camera(scene, y, flux * beta, start->light, FirstEvent::Diffuse, sampler, rays,
-                          out, [&](const Vec3& to_cam) {
-                            const Vec3 n = bsdf_shading_normal(bsdf, hit->n, to_cam);
-                            const Frame frame = Frame::from_normal(n);
-                            const Vec3 wo = frame.to_local(to_cam), wi = frame.to_local(-ray.dir);
-                            const Vec3 n_off = dot(to_cam, hit->n) >= 0.f ? hit->n : -hit->n;
-                            return std::pair{bsdf_eval(bsdf, wo, wi) * std::abs(wo.z),
-                                             offset_ray_origin(hit->p, n_off)};
-                          });
+      on_surface(*hit, flux * beta, start->light, bsdf, ray.dir, events);
       if (events == options.max_depth) return;
       const Vec3 n = bsdf_shading_normal(bsdf, hit->n, -ray.dir);
       const Frame frame = Frame::from_normal(n);
@@ -166,6 +168,46 @@ void trace_light_path(const Scene& scene, const PathTracerOptions& options, Samp
     }
     if (!beta.is_finite()) return;
   }
+}
+
+}  // namespace
+
+void trace_light_path(const Scene& scene, const PathTracerOptions& options, Sampler& sampler,
+                      uint32_t& rays, std::vector<CameraSplat>& out) {
+  walk_light_path(
+      scene, options, sampler, rays,
+      [&](const Vec3& y, const Rgb& flux, size_t light, const HgPhase& phase, const Vec3& dir,
+          int events) {
+        if (events < options.light_traced_from) return;
+        connect_to_camera(scene, y, flux, light, FirstEvent::Volume, sampler, rays, out,
+                          [&](const Vec3& to_cam) {
+                            return std::pair{Rgb(phase.eval(to_cam, -dir)), y};
+                          });
+      },
+      [&](const SurfaceHit& hit, const Rgb& flux, size_t light, const Bsdf& bsdf, const Vec3& dir,
+          int events) {
+        if (events < options.light_traced_from || !first_event_light_traced(bsdf)) return;
+        connect_to_camera(scene, hit.p, flux, light, FirstEvent::Diffuse, sampler, rays, out,
+                          [&](const Vec3& to_cam) {
+                            const Vec3 n = bsdf_shading_normal(bsdf, hit.n, to_cam);
+                            const Frame frame = Frame::from_normal(n);
+                            const Vec3 wo = frame.to_local(to_cam), wi = frame.to_local(-dir);
+                            const Vec3 n_off = dot(to_cam, hit.n) >= 0.f ? hit.n : -hit.n;
+                            return std::pair{bsdf_eval(bsdf, wo, wi) * std::abs(wo.z),
+                                             offset_ray_origin(hit.p, n_off)};
+                          });
+      });
+}
+
+void trace_photon_path(const Scene& scene, const PathTracerOptions& options, Sampler& sampler,
+                       uint32_t& rays, std::vector<Photon>& out) {
+  walk_light_path(
+      scene, options, sampler, rays,
+      [&](const Vec3& y, const Rgb& flux, size_t light, const HgPhase&, const Vec3& dir,
+          int events) {
+        if (events >= options.light_traced_from) out.push_back({y, dir, flux, uint32_t(light)});
+      },
+      [](const SurfaceHit&, const Rgb&, size_t, const Bsdf&, const Vec3&, int) {});
 }
 
 }  // namespace vesper

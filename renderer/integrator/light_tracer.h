@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "renderer/integrator/path_tracer.h"
+#include "renderer/integrator/photon_map.h"
 
 namespace vesper {
 
@@ -33,6 +34,12 @@ struct CameraSplat {
 void trace_light_path(const Scene& scene, const PathTracerOptions& options, Sampler& sampler,
                       uint32_t& rays, std::vector<CameraSplat>& out);
 
+// Traces one light subpath as trace_light_path does and appends its
+// scattering vertices in media, from light_traced_from events on, as
+// photons (photon_merging.h) instead of connecting them to the camera.
+void trace_photon_path(const Scene& scene, const PathTracerOptions& options, Sampler& sampler,
+                       uint32_t& rays, std::vector<Photon>& out);
+
 // Whether a camera path's first event at a surface of this BSDF leaves the
 // path to the light tracer (as one in a medium does): diffuse surfaces,
 // whose light the light tracer spreads evenly; glossy ones stay with the
@@ -42,6 +49,10 @@ bool first_event_light_traced(const Bsdf& bsdf);
 // Whether light tracing can take part: a pinhole camera that does not move,
 // a light that subpaths start at, and media.
 bool light_tracing_applies(const Scene& scene);
+
+// Whether photon merging (photon_merging.h) can take part: media, a light
+// that subpaths start at, and no motion blur (photons carry no time).
+bool photon_merging_applies(const Scene& scene);
 
 // The default (RenderOptions::light_traced_from unset): from how many
 // events, and where, light tracing paid for itself in vesper_volume_bench:

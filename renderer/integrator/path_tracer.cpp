@@ -119,7 +119,7 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   if (depth == 0 && ctx.options.want_aovs) ctx.result.albedo = bsdf_albedo(bsdf);
   if constexpr (kMedia)
     if (depth == 0 && ctx.options.light_traced_from > 0)
-      ctx.first_event_splattable = first_event_light_traced(bsdf);
+      ctx.first_event_splattable = !ctx.options.photons && first_event_light_traced(bsdf);
   // An opaque BSDF reflects only on the viewer's side: lights wholly behind
   // it can be skipped; light through a dielectric may come from anywhere.
   const ShadingPoint at{hit.p, transmissive ? Vec3(0.f) : n_shading};

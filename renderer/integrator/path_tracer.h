@@ -9,6 +9,8 @@
 
 namespace vesper {
 
+struct PhotonMerging;
+
 // What one camera path returns. AOV fields are filled only when asked for.
 struct PathResult {
   Rgb radiance;
@@ -45,6 +47,10 @@ struct PathTracerOptions {
   // ... and it takes every light: camera paths that can only make such paths
   // end.
   bool light_traced_all = false;
+  // Photon merging (photon_merging.h; opt-in, biased): the photons that
+  // take the light-traced paths (light_traced_from) whose first event is in
+  // a medium, in place of light tracing's splats. Not owned.
+  const PhotonMerging* photons = nullptr;
   // Estimate the camera ray's transmittance through the media (layer alpha).
   bool want_camera_transmittance = false;
   // > 0: a camera sample's indirect light (reached after two or more

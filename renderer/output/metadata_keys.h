@@ -41,6 +41,9 @@ inline constexpr std::array<const char*, 4> kPerRangeFigures{kNoiseReached, kSpp
 
 // render.clamp / --clamp (biased): the indirect sample clamp, when set.
 inline constexpr char kClamp[] = "vesper:clamp";
+// render.photon_merging / --photon-merging (biased), when it ran: "radius R
+// photons P subpaths N", what sets its bias.
+inline constexpr char kPhotonMerging[] = "vesper:photon_merging";
 // render.shutter (motion blur), when set: "open close" in frames relative to
 // the frame; and the motion steps the camera and shapes were sampled at
 // (absent when nothing moves over the shutter).

@@ -17,6 +17,7 @@
 #include "renderer/output/range_metadata.h"
 #include "renderer/render/channel_layout.h"
 #include "renderer/render/light_pass.h"
+#include "renderer/render/photon_pass.h"
 #include "renderer/render/pixel_sampler.h"
 #include "renderer/render/sampling_plan.h"
 
@@ -28,6 +29,11 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+bool photon_merging_runs(const Scene& scene, const RenderOptions& options) {
+  return options.photon_merging.value_or(scene.render.photon_merging) &&
+         photon_merging_applies(scene);
 }
 
 PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& options,
@@ -46,6 +52,12 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   // to adaptive renders, whose pixels stop at different counts. Nor with
   // the indirect clamp, which bounds each camera sample's indirect light:
   // splats would bypass it.
+  if (photon_merging_runs(scene, options)) {
+    // Photons take light tracing's part of path space (media only).
+    pt.light_traced_from = std::max(2, options.light_traced_from.value_or(kLightTracedFrom));
+    pt.light_traced_all = light_tracing_takes_every_light(scene);
+    return pt;
+  }
   const int from =
       options.light_traced_from.value_or(light_tracing_pays_off(scene) ? kLightTracedFrom : 0);
   if (from > 0 && light_tracing_applies(scene) && !plan.multipass() && !options.pixel_samples &&
@@ -266,7 +278,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   const SamplingPlan plan = plan_sampling(scene.render, options);
   const ChannelLayout layout = layout_for(scene, requested_aovs(scene, options, plan),
                                           options.layers, options.layer_variance);
-  const PathTracerOptions pt = path_tracer_options(scene, options, layout, plan);
+  PathTracerOptions pt = path_tracer_options(scene, options, layout, plan);
+  const bool photons_run = photon_merging_runs(scene, options);
 
   RenderResult out;
   LayeredImage& img = out.image;
@@ -287,14 +300,30 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   // Progress in camera samples, against the most the range allows, after
   // as many light subpaths when light tracing runs.
   const uint64_t camera_most = uint64_t(pixels) * uint64_t(plan.cap);
-  const uint64_t most = camera_most * (pt.light_traced_from > 0 ? 2 : 1);
+  const uint64_t photon_subpaths =
+      photons_run ? std::min(uint64_t(pixels) * uint64_t(frame_spp(scene.render, options)),
+                             kMaxPhotonSubpaths)
+                  : 0;
+  const uint64_t most = camera_most + (photons_run                ? photon_subpaths
+                                       : pt.light_traced_from > 0 ? camera_most
+                                                                  : 0);
   std::atomic<uint64_t> done{0};
   auto report = [&](uint64_t n) {
     const uint64_t d = done += n;
     if (options.on_progress) options.on_progress(size_t(std::min(d, most)), size_t(most));
   };
+  std::optional<PhotonPassResult> photons;
+  if (photons_run) {
+    const std::optional<double> radius =
+        options.photon_radius ? options.photon_radius : scene.render.photon_radius;
+    // Scene units to render space (scene.h).
+    photons =
+        trace_photons(scene, pt, plan.seed, frame_spp(scene.render, options),
+                      float(radius.value_or(0.0) / scene.unit_scale), options.threads, report);
+    pt.photons = &photons->photons;
+  }
   std::optional<LightSplats> splats;
-  if (pt.light_traced_from > 0) {
+  if (pt.light_traced_from > 0 && !photons_run) {
     splats.emplace(scene, pt, layout, plan, options.threads, report);
     pass.splats = &*splats;
   }
@@ -321,8 +350,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
 
   out.stats.seconds = seconds_since(t0);
   out.stats.camera_samples = counts.camera_samples;
-  out.stats.rays = counts.rays + (splats ? splats->rays() : 0);
-  out.stats.nonfinite_samples = counts.nonfinite + (splats ? splats->nonfinite() : 0);
+  out.stats.rays = counts.rays + (splats ? splats->rays() : 0) + (photons ? photons->rays : 0);
+  out.stats.nonfinite_samples =
+      counts.nonfinite + (splats ? splats->nonfinite() : 0) + (photons ? photons->nonfinite : 0);
   set_range_metadata(img.metadata, {.scene_hash = scene.content_hash,
                                     .renderer_version = VESPER_VERSION,
                                     .spp = plan.cap,
@@ -334,6 +364,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   set_sampling_metadata(img.metadata, plan, out.stats, out.film);
   if (pt.indirect_clamp > 0.f)  // biased: the image says so
     img.metadata[metadata_key::kClamp] = fmt::format("{}", pt.indirect_clamp);
+  if (photons)  // biased: the image says so, with what sets the bias
+    img.metadata[metadata_key::kPhotonMerging] =
+        fmt::format("radius {:.4g} photons {} subpaths {}",
+                    double(photons->photons.map.radius()) * scene.unit_scale,
+                    photons->photons.map.size(), photons->photons.subpaths);
   set_shutter_metadata(img.metadata, scene);
   if (!options.keep_sums) out.film = FilmSums();
   return out;

@@ -72,6 +72,12 @@ struct RenderOptions {
   // sample counts only: adaptive renders and pixel_samples leave it off, as
   // does the indirect clamp (splats would bypass it).
   std::optional<int> light_traced_from;
+  // Photon merging (integrator/photon_merging.h; biased, consistent): takes
+  // light tracing's part of path space, first events in media only. Unset:
+  // render.photon_merging (off by default). Needs media, a point or spot
+  // light and no motion blur; otherwise the render is exact as before.
+  std::optional<bool> photon_merging;
+  std::optional<double> photon_radius;  // overrides render.photon_radius (scene units)
   // Ranks per Cryptomatte type (Aov::Cryptomatte): (depth + 1) / 2 RGBA layers
   // each, in [1, kMaxCryptoDepth] (std::invalid_argument otherwise).
   int cryptomatte_depth = 6;

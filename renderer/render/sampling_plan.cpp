@@ -31,6 +31,8 @@ SamplingPlan plan_sampling(const RenderDesc& r, const RenderOptions& options) {
   check_positive(plan.time_limit, "render.time_limit", "--time-limit");
   // Not a sampling setting, but checked with the others before a render starts.
   check_positive(options.clamp ? options.clamp : r.clamp, "render.clamp", "--clamp");
+  check_positive(options.photon_radius ? options.photon_radius : r.photon_radius,
+                 "render.photon_radius", "--photon-radius");
   const std::optional<int> max_spp = options.max_spp ? options.max_spp : r.max_spp;
   const std::optional<int> min_spp = options.min_spp ? options.min_spp : r.min_spp;
   if (max_spp && *max_spp < 1) bad("render.max_spp (--max-spp) must be at least 1");

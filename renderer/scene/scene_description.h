@@ -75,6 +75,12 @@ struct RenderDesc {
   // render.clamp: the largest RGB component a camera sample's indirect light
   // may have (integrator/path_context.h). Biased; unset = off.
   std::optional<double> clamp;
+  // render.photon_merging: photon merging for multiple scattering in media
+  // (integrator/photon_merging.h). Biased (consistent); off by default.
+  // render.photon_radius: its kernel radius in scene units; unset = from
+  // the photon count (photon_radius).
+  bool photon_merging = false;
+  std::optional<double> photon_radius;
   // render.shutter: [open, close] in frames, offsets from the frame rendered
   // (open <= close). Unset: no motion blur.
   struct Shutter {

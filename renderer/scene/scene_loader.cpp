@@ -107,7 +107,8 @@ void parse_shutter(JsonReader& node, RenderDesc& render) {
 RenderDesc parse_render(JsonReader node) {
   node.expect_object();
   node.allow_keys({"spp", "max_depth", "seed", "aovs", "noise_target", "min_spp", "max_spp",
-                   "time_limit", "clamp", "shutter", "light_selection"});
+                   "time_limit", "clamp", "shutter", "light_selection", "photon_merging",
+                   "photon_radius"});
   RenderDesc render;
   render.spp = int(node.integer("spp", 1, INT_MAX));
   render.max_depth = int(node.integer("max_depth", 8, 1, INT_MAX));
@@ -115,6 +116,9 @@ RenderDesc parse_render(JsonReader node) {
   if (const auto aovs = node.optional_child("aovs")) render.aovs = read_aov_list(*aovs);
   parse_sampling_budget(node, render);
   parse_shutter(node, render);
+  render.photon_merging = node.boolean("photon_merging", false);
+  if (node.optional_child("photon_radius"))
+    render.photon_radius = node.number("photon_radius", Range::positive());
   static constexpr std::string_view kLightSelections[] = {"spatial", "power_uniform", "tree"};
   render.light_selection = LightSelection(node.enumeration("light_selection", 0, kLightSelections));
   return render;

@@ -1,0 +1,104 @@
+// The photon map (photon_map.h) finds exactly the photons within its
+// radius, and photon merging's kernel (photon_merging.h) is normalised: over
+// photons of a known density it estimates that density without bias.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "renderer/integrator/photon_map.h"
+#include "renderer/integrator/photon_merging.h"
+#include "renderer/math/constants.h"
+
+namespace vesper::test {
+namespace {
+
+std::vector<Photon> random_photons(size_t n, std::mt19937& rng, float spread) {
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::vector<Photon> photons(n);
+  for (size_t i = 0; i < n; ++i) {
+    // Clustered and spread at once: a grid sized for neither.
+    const float s = i % 3 == 0 ? spread : 0.05f * spread;
+    photons[i].p = Vec3(s * u(rng), s * u(rng), s * u(rng));
+    photons[i].weight = Rgb(float(i + 1));
+    photons[i].light = uint32_t(i);
+  }
+  return photons;
+}
+
+TEST(PhotonMap, FindsExactlyThePhotonsWithinItsRadius) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-0.2f, 1.2f);
+  for (const float radius : {0.01f, 0.05f, 0.3f, 2.f}) {
+    SCOPED_TRACE(radius);
+    const std::vector<Photon> photons = random_photons(3000, rng, 1.f);
+    const PhotonMap map(photons, radius);
+    ASSERT_EQ(map.size(), photons.size());
+    for (int q = 0; q < 300; ++q) {
+      // Query points inside and outside the photons' bounds.
+      const Vec3 x(u(rng), u(rng), u(rng));
+      std::vector<uint32_t> expected, found;
+      for (const Photon& p : photons)
+        if (length_squared(p.p - x) <= radius * radius) expected.push_back(p.light);
+      map.for_each_near(x, [&](const Photon& p) { found.push_back(p.light); });
+      std::sort(found.begin(), found.end());
+      ASSERT_EQ(found, expected) << "query " << q;
+    }
+  }
+}
+
+TEST(PhotonMap, EmptyMapFindsNothing) {
+  const PhotonMap map({}, 0.1f);
+  int n = 0;
+  map.for_each_near(Vec3(0.f), [&](const Photon&) { ++n; });
+  EXPECT_EQ(n, 0);
+  EXPECT_THROW(PhotonMap({}, 0.f), std::invalid_argument);
+}
+
+TEST(PhotonMerging, KernelEstimatesAUniformDensityWithoutBias) {
+  // N subpaths leave photons uniformly over the unit cube, weight w each,
+  // M photons in all: sum_p weight_p * scale() estimates the weight per
+  // unit volume over N, M w / N, away from the cube's faces. Z-test over
+  // independent maps, alpha = 0.01 (two-sided, |z| < 2.576).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  const size_t m = 20000;
+  const uint64_t n = 5000;
+  const float w = 0.5f, radius = 0.08f;
+  const double truth = double(m) * w / double(n);
+  std::vector<double> estimates;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<Photon> photons(m);
+    for (Photon& p : photons) {
+      p.p = Vec3(u(rng), u(rng), u(rng));
+      p.weight = Rgb(w);
+    }
+    PhotonMerging pm{PhotonMap(std::move(photons), radius), n};
+    double sum = 0;
+    pm.map.for_each_near(Vec3(0.3f + 0.4f * u(rng), 0.5f, 0.5f),
+                         [&](const Photon& p) { sum += p.weight.r; });
+    estimates.push_back(sum * pm.scale());
+  }
+  double mean = 0, var = 0;
+  for (double e : estimates) mean += e / double(estimates.size());
+  for (double e : estimates) var += (e - mean) * (e - mean) / double(estimates.size() - 1);
+  const double z = (mean - truth) / std::sqrt(var / double(estimates.size()));
+  EXPECT_LT(std::abs(z), 2.576) << "mean " << mean << " against " << truth;
+  // A kernel volume off by 10 % would be caught: the standard error is
+  // smaller than that.
+  EXPECT_LT(std::sqrt(var / double(estimates.size())), 0.03 * truth);
+}
+
+TEST(PhotonMerging, RadiusShrinksAsThePhotonsGrow) {
+  // k = 32 photons in the ball at a million photons' mean density, and r
+  // falling as photons^-0.2 (consistency: bias and variance both vanish).
+  const double volume = 8.0;
+  const float r = photon_radius(1e6, volume);
+  EXPECT_NEAR(4.0 / 3.0 * kPi * r * r * r * 1e6 / volume, 32.0, 1e-3 * 32.0);
+  EXPECT_NEAR(photon_radius(32e6, volume) / r, std::pow(32.0, -0.2), 1e-4);
+  EXPECT_EQ(photon_radius(0, volume), 0.f);
+}
+
+}  // namespace
+}  // namespace vesper::test
