@@ -102,26 +102,6 @@ void connect_from_medium(PathContext& ctx, const Vec3& p, const HgPhase& phase, 
     ctx.add(path.throughput * value, depth + 2, ctx.scene.light_group[lv->light]);
 }
 
-// Photon merging at the camera path's first medium vertex p: the light of
-// the paths the photons stand for (photon_merging.h), by light group.
-void merge_photons(PathContext& ctx, const Vec3& p, const HgPhase& phase, const Vec3& wo,
-                   const PathState& path) {
-  const PhotonMerging& pm = *ctx.options.photons;
-  const Scene& scene = ctx.scene;
-  thread_local std::vector<Rgb> by_group;
-  by_group.assign(scene.group_names.size(), Rgb());
-  bool any = false;
-  pm.map.for_each_near(p, [&](const Photon& ph) {
-    by_group[size_t(scene.light_group[ph.light])] += ph.weight * phase.eval(wo, -ph.dir);
-    any = true;
-  });
-  if (!any) return;
-  const Rgb sigma_s = scene.media.coefficients(p, path.ray.time).sigma_s;
-  const Rgb scale = safe_ratio(Rgb(pm.scale()), sigma_s);
-  for (size_t g = 0; g < by_group.size(); ++g)
-    if (!by_group[g].is_black()) ctx.add(path.throughput * by_group[g] * scale, 2, int(g));
-}
-
 // At a real scattering collision: light from there, then the next ray.
 void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const FreeFlight& flight,
              bool equiangular, std::optional<double> shaft_depth, int depth, PathState& path) {
@@ -140,7 +120,7 @@ void scatter(PathContext& ctx, const std::vector<MajorantSpan>& spans, const Fre
   }
   const Vec3 p = path.ray.origin + path.ray.dir * flight.t;
   const Vec3 wo = -path.ray.dir;
-  if (depth == 0 && ctx.options.photons) merge_photons(ctx, p, phase, wo, path);
+  if (depth == 0 && ctx.options.photons) merge_medium_photons(ctx, p, phase, wo, path);
   if (ctx.light_vertices && depth + 1 < ctx.options.max_depth && !ctx.light_traced_all(depth + 2))
     connect_from_medium(ctx, p, phase, wo, depth, path);
   const Vec3 wi = phase.sample(wo, ctx.sampler.next2());

@@ -10,6 +10,7 @@
 #include "renderer/integrator/light_tracer.h"
 #include "renderer/integrator/light_vertex_connection.h"
 #include "renderer/integrator/medium_step.h"
+#include "renderer/integrator/photon_merging.h"
 #include "renderer/integrator/path_context.h"
 #include "renderer/integrator/sun_shaft.h"
 #include "renderer/math/frame.h"
@@ -119,10 +120,13 @@ bool scatter_at_surface(PathContext& ctx, const SurfaceHit& hit, int depth, Path
   if (depth == 0 && ctx.options.want_aovs) ctx.result.albedo = bsdf_albedo(bsdf);
   if constexpr (kMedia)
     if (depth == 0 && ctx.options.light_traced_from > 0)
-      ctx.first_event_splattable = !ctx.options.photons && first_event_light_traced(bsdf);
+      ctx.first_event_splattable = first_event_light_traced(bsdf);
   // An opaque BSDF reflects only on the viewer's side: lights wholly behind
   // it can be skipped; light through a dielectric may come from anywhere.
   const ShadingPoint at{hit.p, transmissive ? Vec3(0.f) : n_shading};
+  if constexpr (kMedia)
+    if (depth == 0 && ctx.options.photons && ctx.first_event_splattable)
+      merge_surface_photons(ctx, hit.p, hit.n, bsdf, frame, wo, path);
 
   std::optional<LightSampler::Sums> selection;
   if (ctx.have_lights() && !bsdf_is_delta(bsdf)) {

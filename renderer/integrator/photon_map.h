@@ -20,6 +20,7 @@ struct Photon {
   Vec3 dir;    // the direction the light travelled to p
   Rgb weight;  // the light subpath's weight arriving at p (flux times scattering weights)
   uint32_t light = 0;
+  Vec3 n{};  // a surface photon's geometric normal; zero in a medium
 };
 
 class PhotonMap {

@@ -7,7 +7,12 @@
 // vertex x in a medium estimates the light those paths bring it from the
 // photons within a radius r of x,
 //   L(x, wo) sigma_s(x) ~ sum_p phase(wo, -dir_p) weight_p / (N * 4/3 pi r^3),
-// N the light subpaths traced. That takes the same part of path space as
+// N the light subpaths traced; and their vertices on diffuse surfaces from
+// light_traced_from events on, so that a camera path whose first event is
+// on a diffuse surface x estimates
+//   L(x, wo) ~ sum_p f(wo, -dir_p) weight_p / (N * pi r^2)
+// over the photons on x's plane (normals within ~25 degrees, the same side).
+// That takes the same part of path space as
 // light tracing (PathContext::light_traced), so the camera paths leave it
 // out in the same way. The kernel blurs the light over r (bias), and lights
 // the fog within r of a medium's boundary less (part of its sphere lies
@@ -16,16 +21,32 @@
 // works in adaptive renders: every camera sample reads the same photons.
 #include <cstdint>
 
+#include "renderer/bsdf/bsdf.h"
 #include "renderer/integrator/photon_map.h"
+#include "renderer/math/frame.h"
 
 namespace vesper {
 
 struct PhotonMerging {
-  PhotonMap map;
+  PhotonMap map;          // photons in media
+  PhotonMap surface_map;  // photons on diffuse surfaces, the same radius
   uint64_t subpaths = 0;  // N: light subpaths traced (with or without photons)
-  // 1 / (N * 4/3 pi r^3): the kernel's normalisation.
+  // 1 / (N * 4/3 pi r^3) and 1 / (N * pi r^2): the kernels' normalisations.
   float scale() const;
+  float surface_scale() const;
 };
+
+struct PathContext;
+struct PathState;
+struct HgPhase;
+
+// Adds the photons' estimate at the camera path's first medium vertex p
+// (wo toward the camera), by light group.
+void merge_medium_photons(PathContext& ctx, const Vec3& p, const HgPhase& phase, const Vec3& wo,
+                          const PathState& path);
+// ... at its first surface vertex, on a diffuse BSDF (first_event_light_traced).
+void merge_surface_photons(PathContext& ctx, const Vec3& p, const Vec3& n, const Bsdf& bsdf,
+                           const Frame& frame, const Vec3& wo, const PathState& path);
 
 // The default radius for `photons` photons spread over a box of `volume`:
 // the radius whose ball holds k of them at that mean density, with k

@@ -51,25 +51,28 @@ PhotonPassResult trace_photons(const Scene& scene, const PathTracerOptions& pt, 
       }
     });
   });
-  std::vector<Photon> photons;
-  size_t count = 0;
-  for (const auto& v : per_task) count += v.size();
-  photons.reserve(count);
-  Vec3 lo(0.f), hi(0.f);
+  // Joined in task order; media and surfaces apart. The radius follows
+  // the media's photons (their box's volume), or the surfaces' where there
+  // are none.
+  std::vector<Photon> photons, surface;
   for (auto& v : per_task) {
-    for (const Photon& p : v) {
-      lo = photons.empty() ? p.p : min(lo, p.p);
-      hi = photons.empty() ? p.p : max(hi, p.p);
-      photons.push_back(p);
-    }
+    for (const Photon& p : v) (p.n == Vec3(0.f) ? photons : surface).push_back(p);
     std::vector<Photon>().swap(v);
+  }
+  const std::vector<Photon>& sizing = photons.empty() ? surface : photons;
+  Vec3 lo(0.f), hi(0.f);
+  for (size_t i = 0; i < sizing.size(); ++i) {
+    lo = i == 0 ? sizing[i].p : min(lo, sizing[i].p);
+    hi = i == 0 ? sizing[i].p : max(hi, sizing[i].p);
   }
   const Vec3 extent = hi - lo;
   const double volume = double(extent.x) * double(extent.y) * double(extent.z);
-  if (!(radius > 0.f)) radius = photon_radius(double(photons.size()), volume);
+  if (!(radius > 0.f))
+    radius = photon_radius(double(sizing.size()), volume);
   if (!(radius > 0.f)) radius = 1e-3f;  // no photons, or all in a plane: nothing to find
   PhotonPassResult result;
   result.photons.map = PhotonMap(std::move(photons), radius);
+  result.photons.surface_map = PhotonMap(std::move(surface), radius);
   result.photons.subpaths = total;
   result.rays = rays;
   result.nonfinite = nonfinite;

@@ -74,7 +74,9 @@ TEST(PhotonMerging, KernelEstimatesAUniformDensityWithoutBias) {
       p.p = Vec3(u(rng), u(rng), u(rng));
       p.weight = Rgb(w);
     }
-    PhotonMerging pm{PhotonMap(std::move(photons), radius), n};
+    PhotonMerging pm;
+    pm.map = PhotonMap(std::move(photons), radius);
+    pm.subpaths = n;
     double sum = 0;
     pm.map.for_each_near(Vec3(0.3f + 0.4f * u(rng), 0.5f, 0.5f),
                          [&](const Photon& p) { sum += p.weight.r; });
@@ -88,6 +90,38 @@ TEST(PhotonMerging, KernelEstimatesAUniformDensityWithoutBias) {
   // A kernel volume off by 10 % would be caught: the standard error is
   // smaller than that.
   EXPECT_LT(std::sqrt(var / double(estimates.size())), 0.03 * truth);
+}
+
+TEST(PhotonMerging, SurfaceKernelEstimatesAUniformDensityWithoutBias) {
+  // The same over the unit square z = 0: M w / N per unit area.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  const size_t m = 4000;
+  const uint64_t n = 1000;
+  const float w = 0.25f, radius = 0.06f;
+  const double truth = double(m) * w / double(n);
+  std::vector<double> estimates;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<Photon> photons(m);
+    for (Photon& p : photons) {
+      p.p = Vec3(u(rng), u(rng), 0.f);
+      p.n = Vec3(0, 0, 1);
+      p.weight = Rgb(w);
+    }
+    PhotonMerging pm;
+    pm.surface_map = PhotonMap(std::move(photons), radius);
+    pm.subpaths = n;
+    double sum = 0;
+    pm.surface_map.for_each_near(Vec3(0.2f + 0.6f * u(rng), 0.5f, 0.f),
+                                 [&](const Photon& p) { sum += p.weight.r; });
+    estimates.push_back(sum * pm.surface_scale());
+  }
+  double mean = 0, var = 0;
+  for (double e : estimates) mean += e / double(estimates.size());
+  for (double e : estimates) var += (e - mean) * (e - mean) / double(estimates.size() - 1);
+  const double se = std::sqrt(var / double(estimates.size()));
+  EXPECT_LT(std::abs(mean - truth) / se, 2.576) << "mean " << mean << " against " << truth;
+  EXPECT_LT(se, 0.03 * truth);
 }
 
 TEST(PhotonMerging, RadiusShrinksAsThePhotonsGrow) {

@@ -49,18 +49,20 @@ RenderOptions exact() {
 }
 
 TEST(PhotonMerging, AgreesWithTheExactEstimatorAtASmallRadius) {
-  // volume_indirect: photon merging takes all of it from the two lights it
-  // starts at (not the sky's), so the comparison is undiluted. The kernel's
-  // bias at this radius is below the tiles' noise; the test catches the
-  // kernel's normalisation (a sigma_s or volume factor) and the phase
-  // function's direction.
+  // volume_indirect and diffuse_indirect: photon merging takes all of them
+  // from the two lights it starts at (not the sky's), so the comparison is
+  // undiluted. The kernels' bias at this radius is below the tiles' noise;
+  // the test catches their normalisation (a sigma_s, volume or area factor)
+  // and the phase function's or the BSDF's direction.
   SceneDescription d = shaft_scene();
-  d.render.aovs = {Aov::VolumeIndirect};
+  d.render.aovs = {Aov::VolumeIndirect, Aov::DiffuseIndirect};
   d.render.spp = 64;
   const Scene scene = build_scene(d);
-  expect_estimators_agree(scene, merging(0.05), scene, exact(), 10, 6, "volume_indirect");
-  // And the beauty (first events on surfaces stay with the camera paths).
-  expect_estimators_agree(scene, merging(0.05), exact());
+  for (const char* aov : {"volume_indirect", "diffuse_indirect"}) {
+    SCOPED_TRACE(aov);
+    expect_estimators_agree(scene, merging(0.05), scene, exact(), 10, 6, aov);
+  }
+  expect_estimators_agree(scene, merging(0.05), exact());  // and the beauty
 }
 
 TEST(PhotonMerging, BitwiseIdenticalForOneAndTwoThreads) {
