@@ -250,21 +250,20 @@ int main(int argc, char** argv) {
   const Config no_lv{.name = "light-vertex connections off", .light_vertices = false};
   const Config lv_on{.name = "light-vertex connections on", .light_vertices = true};
   const Config eq_off{.name = "equiangular off", .equiangular = false};
+  // Photon merging is opt-in (biased): its rows against the same exact
+  // reference, the automatic radius and two fixed ones (scene units).
   const Config pm{.name = "photon merging (opt-in, biased)", .photon_merging = true};
-  const Config pm_r1{
-      .name = "photon merging, radius 0.025", .photon_merging = true, .photon_radius = 0.025};
-  const Config pm_r2{
+  const Config pm_small{
       .name = "photon merging, radius 0.05", .photon_merging = true, .photon_radius = 0.05};
-  const Config pm_r4{
-      .name = "photon merging, radius 0.1", .photon_merging = true, .photon_radius = 0.1};
+  const Config pm_large{
+      .name = "photon merging, radius 0.3", .photon_merging = true, .photon_radius = 0.3};
 
   if (wanted(only, "fog-shafts"))
     run_scene("fog-shafts (homogeneous fog, spot light)", scenes / "fog-shafts/scene.json",
               {{.name = "default"},
                pm,
-               pm_r1,
-               pm_r2,
-               pm_r4,
+               pm_small,
+               pm_large,
                lt_forced,
                no_lv,
                {.name = "equiangular over the whole ray", .equiangular_in_cone = false},
@@ -274,11 +273,11 @@ int main(int argc, char** argv) {
   if (wanted(only, "point-fog"))
     run_scene(
         "point-fog (homogeneous fog, point light)", root / "bench/scenes/point-fog/scene.json",
-        {{.name = "default"}, pm, pm_r1, pm_r2, pm_r4, lt_3, lt_off, lt_lv_off, eq_off, start}, {},
-        quick);
+        {{.name = "default"}, pm, pm_small, lt_3, lt_off, lt_lv_off, eq_off, start}, {}, quick);
   if (wanted(only, "smoke"))
     run_scene("smoke (shared smoke.vdb, quad + point light)", scenes / "smoke/scene.json",
               {{.name = "default (majorant grid, equiangular)"},
+               pm,
                lt_forced,
                {.name = "majorant grid off (global majorant)", .majorant_grid = false},
                lv_on,
@@ -289,6 +288,7 @@ int main(int argc, char** argv) {
     run_scene("night-room (fog, sun through a window, three candles)",
               scenes / "night-room/scene.json",
               {{.name = "default"},
+               pm,
                lt_forced,
                no_lv,
                {.name = "sun shafts off", .sun_shafts = false},
@@ -297,7 +297,7 @@ int main(int argc, char** argv) {
   if (wanted(only, "lantern")) {
     const std::filesystem::path lantern = write_lantern_scene();
     run_scene("thin cloud lantern (generated cloud VDB, point light inside)", lantern,
-              {{.name = "default"}, lt_3, lt_off, lt_lv_off, eq_off, start}, {}, quick);
+              {{.name = "default"}, pm, lt_3, lt_off, lt_lv_off, eq_off, start}, {}, quick);
     std::filesystem::remove_all(lantern.parent_path());
   }
   return 0;

@@ -207,8 +207,8 @@ void trace_photon_path(const Scene& scene, const PathTracerOptions& options, Sam
           int events) {
         if (events >= options.light_traced_from) out.push_back({y, dir, flux, uint32_t(light)});
       },
-      [&](const SurfaceHit& hit, const Rgb& flux, size_t light, const Bsdf& bsdf,
-          const Vec3& dir, int events) {
+      [&](const SurfaceHit& hit, const Rgb& flux, size_t light, const Bsdf& bsdf, const Vec3& dir,
+          int events) {
         if (events >= options.light_traced_from && first_event_light_traced(bsdf))
           out.push_back({hit.p, dir, flux, uint32_t(light), hit.n});
       });

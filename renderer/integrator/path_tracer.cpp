@@ -10,8 +10,8 @@
 #include "renderer/integrator/light_tracer.h"
 #include "renderer/integrator/light_vertex_connection.h"
 #include "renderer/integrator/medium_step.h"
-#include "renderer/integrator/photon_merging.h"
 #include "renderer/integrator/path_context.h"
+#include "renderer/integrator/photon_merging.h"
 #include "renderer/integrator/sun_shaft.h"
 #include "renderer/math/frame.h"
 

@@ -67,8 +67,7 @@ PhotonPassResult trace_photons(const Scene& scene, const PathTracerOptions& pt, 
   }
   const Vec3 extent = hi - lo;
   const double volume = double(extent.x) * double(extent.y) * double(extent.z);
-  if (!(radius > 0.f))
-    radius = photon_radius(double(sizing.size()), volume);
+  if (!(radius > 0.f)) radius = photon_radius(double(sizing.size()), volume);
   if (!(radius > 0.f)) radius = 1e-3f;  // no photons, or all in a plane: nothing to find
   PhotonPassResult result;
   result.photons.map = PhotonMap(std::move(photons), radius);

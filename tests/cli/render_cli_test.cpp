@@ -92,6 +92,19 @@ TEST_F(RenderCli, ClampIsRecordedInTheHeaderAndANonPositiveOneIsRefused) {
   EXPECT_NE(bad.err.find("--clamp"), std::string::npos) << bad.err;
 }
 
+TEST_F(RenderCli, PhotonMergingIsRecordedInTheHeaderAndANonPositiveRadiusIsRefused) {
+  const std::string fog = std::string(VESPER_SOURCE_DIR) + "/scenes/fog-shafts/scene.json ";
+  const fs::path exr = dir_ / "photons.exr";
+  const RunResult r = run(fog + "-o " + exr.string() +
+                          " --spp 1 --scale 0.1 --photon-merging --photon-radius 0.2 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string recorded = vesper::read_exr(exr).metadata.at("vesper:photon_merging");
+  EXPECT_EQ(recorded.rfind("radius 0.2 photons ", 0), 0u) << recorded;
+  const RunResult bad = run(fog + "-o " + (dir_ / "x.exr").string() + " --photon-radius -1");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--photon-radius"), std::string::npos) << bad.err;
+}
+
 TEST_F(RenderCli, MissingSceneFileIsAClearError) {
   const RunResult r = run((dir_ / "nope.json").string() + " -o " + (dir_ / "x.exr").string());
   EXPECT_NE(r.exit_code, 0);

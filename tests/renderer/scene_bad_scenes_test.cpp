@@ -60,6 +60,8 @@ const BadScene kBadScenes[] = {
     {"min_spp_over_max_spp.json", "/render/min_spp", "min_spp 64 is greater than max_spp 16"},
     {"time_limit_zero.json", "/render/time_limit", "expected a positive number, got 0"},
     {"clamp_negative.json", "/render/clamp", "expected a positive number, got -2"},
+    {"photon_radius_zero.json", "/render/photon_radius", "expected a positive number, got 0"},
+    {"photon_merging_not_bool.json", "/render/photon_merging", "expected true or false, got string \"yes\""},
     {"unknown_aov.json", "/render/aovs/1", "expected one of \"albedo\", \"normal\", \"depth\", \"emission\", \"diffuse_direct\", \"diffuse_indirect\", \"specular_direct\", \"specular_indirect\", \"volume_direct\", \"volume_indirect\", \"variance\", \"spp\", \"cryptomatte\", got string \"normals\""},
     {"unknown_aov_transport.json", "/render/aovs/1", "expected one of \"albedo\", \"normal\", \"depth\", \"emission\", \"diffuse_direct\", \"diffuse_indirect\", \"specular_direct\", \"specular_indirect\", \"volume_direct\", \"volume_indirect\", \"variance\", \"spp\", \"cryptomatte\", got string \"diffuse\""},
     {"duplicate_aov.json", "/render/aovs/2", "duplicate AOV \"depth\" (already at /render/aovs/0)"},
