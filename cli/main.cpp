@@ -101,12 +101,8 @@ void add_render(CLI::App& app, Dispatch& dispatch) {
                 "light down to at most this in its largest RGB component; overrides render.clamp")
       ->check(greater_than_zero());
   r->add_flag("--photon-merging", o->photon_merging,
-              "Photon merging for light scattered more than once in fog from point and spot "
-              "lights (biased but consistent, off by default: blurs that light over a radius); "
-              "overrides render.photon_merging");
-  r->add_option("--photon-radius", o->photon_radius,
-                "Photon merging's radius in scene units (default: from the photon count); "
-                "overrides render.photon_radius")
+              "Photon merging in fog (biased, off); overrides render.photon_merging");
+  r->add_option("--photon-radius", o->photon_radius, "Its radius; overrides render.photon_radius")
       ->check(greater_than_zero());
   r->add_flag("--half", o->half,
               "Write colour channels as half floats (data channels such as depth, normal, "

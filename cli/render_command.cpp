@@ -92,6 +92,26 @@ void write_partial_frame(FrameResult& frame, int spp, const std::filesystem::pat
       path);
 }
 
+// What the flags override (the seed becomes the frame's with --frame).
+void set_flag_options(const RenderCommandOptions& o, const SceneDescription& desc,
+                      RenderOptions& ro) {
+  ro.spp = o.spp;
+  ro.seed = o.seed;
+  if (o.frame) ro.seed = frame_seed(o.seed.value_or(desc.render.seed), *o.frame);
+  if (o.threads) ro.threads = *o.threads;
+  ro.sample_begin = o.sample_begin;
+  ro.sample_end = o.sample_end;
+  ro.keep_sums = o.partial;
+  ro.noise_target = o.sampling.noise_target;
+  ro.time_limit = o.sampling.time_limit;
+  ro.min_spp = o.sampling.min_spp;
+  ro.max_spp = o.sampling.max_spp;
+  ro.layer_variance = o.layer_variance;
+  ro.clamp = o.clamp;
+  if (o.photon_merging) ro.photon_merging = true;
+  ro.photon_radius = o.photon_radius;
+}
+
 int render_one(const RenderCommandOptions& o) {
   RenderOptions ro;
   SceneDescription desc;
@@ -116,21 +136,7 @@ int render_one(const RenderCommandOptions& o) {
     spdlog::error("{}", e.what());
     return 2;
   }
-  ro.spp = o.spp;
-  ro.seed = o.seed;
-  if (o.frame) ro.seed = frame_seed(o.seed.value_or(desc.render.seed), *o.frame);
-  if (o.threads) ro.threads = *o.threads;
-  ro.sample_begin = o.sample_begin;
-  ro.sample_end = o.sample_end;
-  ro.keep_sums = o.partial;
-  ro.noise_target = o.sampling.noise_target;
-  ro.time_limit = o.sampling.time_limit;
-  ro.min_spp = o.sampling.min_spp;
-  ro.max_spp = o.sampling.max_spp;
-  ro.layer_variance = o.layer_variance;
-  ro.clamp = o.clamp;
-  if (o.photon_merging) ro.photon_merging = true;
-  ro.photon_radius = o.photon_radius;
+  set_flag_options(o, desc, ro);
   try {
     check_sampling_options(desc.render, ro);
   } catch (const std::invalid_argument& e) {

@@ -9,7 +9,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <map>
 #include <optional>
+#include <string>
 
 #include "renderer/integrator/light_tracer.h"
 #include "renderer/integrator/light_vertex.h"
@@ -273,13 +276,62 @@ const char* stop_reason_name(StopReason r) {
   return "spp";
 }
 
+// The passes before the camera pass: light tracing's splats or photon
+// merging's photons (at most one of them).
+struct LightPasses {
+  std::optional<PhotonPassResult> photons;
+  std::optional<LightSplats> splats;
+  uint64_t rays() const { return (splats ? splats->rays() : 0) + (photons ? photons->rays : 0); }
+  uint64_t nonfinite() const {
+    return (splats ? splats->nonfinite() : 0) + (photons ? photons->nonfinite : 0);
+  }
+};
+
+// The light subpaths run_light_passes traces (progress).
+uint64_t light_subpaths(const Scene& scene, const RenderOptions& options,
+                        const PathTracerOptions& pt, uint64_t camera_most) {
+  if (photon_merging_runs(scene, options))
+    return std::min(uint64_t(scene.film.width) * uint64_t(scene.film.height) *
+                        uint64_t(frame_spp(scene.render, options)),
+                    kMaxPhotonSubpaths);
+  return pt.light_traced_from > 0 ? camera_most : 0;
+}
+
+// Traces the photons (pt.photons points at them) or the light tracer's splats.
+void run_light_passes(LightPasses& light, const Scene& scene, const RenderOptions& options,
+                      const ChannelLayout& layout, const SamplingPlan& plan, PathTracerOptions& pt,
+                      const std::function<void(uint64_t)>& report) {
+  if (photon_merging_runs(scene, options)) {
+    const std::optional<double> radius =
+        options.photon_radius ? options.photon_radius : scene.render.photon_radius;
+    // Scene units to render space (scene.h).
+    light.photons =
+        trace_photons(scene, pt, plan.seed, frame_spp(scene.render, options),
+                      float(radius.value_or(0.0) / scene.unit_scale), options.threads, report);
+    pt.photons = &light.photons->photons;
+  } else if (pt.light_traced_from > 0) {
+    light.splats.emplace(scene, pt, layout, plan, options.threads, report);
+  }
+}
+
+// The biased estimators that ran, and what sets their bias: the image says so.
+void set_bias_metadata(std::map<std::string, std::string>& metadata, const Scene& scene,
+                       const PathTracerOptions& pt, const LightPasses& light) {
+  if (pt.indirect_clamp > 0.f)
+    metadata[metadata_key::kClamp] = fmt::format("{}", pt.indirect_clamp);
+  if (light.photons)
+    metadata[metadata_key::kPhotonMerging] =
+        fmt::format("radius {:.4g} photons {} subpaths {}",
+                    double(light.photons->photons.map.radius()) * scene.unit_scale,
+                    light.photons->photons.map.size(), light.photons->photons.subpaths);
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& options) {
   const auto t0 = Clock::now();
   const SamplingPlan plan = plan_sampling(scene.render, options);
   const ChannelLayout layout = layout_for(scene, requested_aovs(scene, options, plan),
                                           options.layers, options.layer_variance);
   PathTracerOptions pt = path_tracer_options(scene, options, layout, plan);
-  const bool photons_run = photon_merging_runs(scene, options);
 
   RenderResult out;
   LayeredImage& img = out.image;
@@ -298,35 +350,17 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   pass.targets = options.pixel_samples;
   pass.uniform_target = plan.cap;
   // Progress in camera samples, against the most the range allows, after
-  // as many light subpaths when light tracing runs.
+  // the light subpaths of light tracing or photon merging.
   const uint64_t camera_most = uint64_t(pixels) * uint64_t(plan.cap);
-  const uint64_t photon_subpaths =
-      photons_run ? std::min(uint64_t(pixels) * uint64_t(frame_spp(scene.render, options)),
-                             kMaxPhotonSubpaths)
-                  : 0;
-  const uint64_t most = camera_most + (photons_run                ? photon_subpaths
-                                       : pt.light_traced_from > 0 ? camera_most
-                                                                  : 0);
+  const uint64_t most = camera_most + light_subpaths(scene, options, pt, camera_most);
   std::atomic<uint64_t> done{0};
   auto report = [&](uint64_t n) {
     const uint64_t d = done += n;
     if (options.on_progress) options.on_progress(size_t(std::min(d, most)), size_t(most));
   };
-  std::optional<PhotonPassResult> photons;
-  if (photons_run) {
-    const std::optional<double> radius =
-        options.photon_radius ? options.photon_radius : scene.render.photon_radius;
-    // Scene units to render space (scene.h).
-    photons =
-        trace_photons(scene, pt, plan.seed, frame_spp(scene.render, options),
-                      float(radius.value_or(0.0) / scene.unit_scale), options.threads, report);
-    pt.photons = &photons->photons;
-  }
-  std::optional<LightSplats> splats;
-  if (pt.light_traced_from > 0 && !photons_run) {
-    splats.emplace(scene, pt, layout, plan, options.threads, report);
-    pass.splats = &*splats;
-  }
+  LightPasses light;
+  run_light_passes(light, scene, options, layout, plan, pt, report);
+  pass.splats = light.splats ? &*light.splats : nullptr;
   auto after_tile = [&](const SampleCounts& n) { report(n.camera_samples); };
 
   SampleCounts counts;
@@ -350,9 +384,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
 
   out.stats.seconds = seconds_since(t0);
   out.stats.camera_samples = counts.camera_samples;
-  out.stats.rays = counts.rays + (splats ? splats->rays() : 0) + (photons ? photons->rays : 0);
-  out.stats.nonfinite_samples =
-      counts.nonfinite + (splats ? splats->nonfinite() : 0) + (photons ? photons->nonfinite : 0);
+  out.stats.rays = counts.rays + light.rays();
+  out.stats.nonfinite_samples = counts.nonfinite + light.nonfinite();
   set_range_metadata(img.metadata, {.scene_hash = scene.content_hash,
                                     .renderer_version = VESPER_VERSION,
                                     .spp = plan.cap,
@@ -362,13 +395,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                                     .render_seconds = out.stats.seconds,
                                     .nonfinite_samples = out.stats.nonfinite_samples});
   set_sampling_metadata(img.metadata, plan, out.stats, out.film);
-  if (pt.indirect_clamp > 0.f)  // biased: the image says so
-    img.metadata[metadata_key::kClamp] = fmt::format("{}", pt.indirect_clamp);
-  if (photons)  // biased: the image says so, with what sets the bias
-    img.metadata[metadata_key::kPhotonMerging] =
-        fmt::format("radius {:.4g} photons {} subpaths {}",
-                    double(photons->photons.map.radius()) * scene.unit_scale,
-                    photons->photons.map.size(), photons->photons.subpaths);
+  set_bias_metadata(img.metadata, scene, pt, light);
   set_shutter_metadata(img.metadata, scene);
   if (!options.keep_sums) out.film = FilmSums();
   return out;
