@@ -205,7 +205,12 @@ void trace_photon_path(const Scene& scene, const PathTracerOptions& options, Sam
       scene, options, sampler, rays,
       [&](const Vec3& y, const Rgb& flux, size_t light, const HgPhase&, const Vec3& dir,
           int events) {
-        if (events >= options.light_traced_from) out.push_back({y, dir, flux, uint32_t(light)});
+        // Divided by sigma_s where it landed (photons land with density
+        // proportional to it): grid media's thin parts then take no weight
+        // from their dense neighbours' photons (photon_merging.h).
+        if (events < options.light_traced_from) return;
+        const Rgb sigma_s = scene.media.coefficients(y, 0.f).sigma_s;
+        out.push_back({y, dir, safe_ratio(flux, sigma_s), uint32_t(light)});
       },
       [&](const SurfaceHit& hit, const Rgb& flux, size_t light, const Bsdf& bsdf, const Vec3& dir,
           int events) {

@@ -17,8 +17,10 @@ namespace vesper {
 
 struct Photon {
   Vec3 p;
-  Vec3 dir;    // the direction the light travelled to p
-  Rgb weight;  // the light subpath's weight arriving at p (flux times scattering weights)
+  Vec3 dir;  // the direction the light travelled to p
+  // The light subpath's weight arriving at p (flux times scattering weights);
+  // in a medium, over sigma_s at p.
+  Rgb weight;
   uint32_t light = 0;
   Vec3 n{};  // a surface photon's geometric normal; zero in a medium
 };

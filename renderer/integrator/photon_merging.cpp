@@ -48,8 +48,7 @@ void add_by_group(PathContext& ctx, const PhotonMap& map, const Vec3& p, const R
 void merge_medium_photons(PathContext& ctx, const Vec3& p, const HgPhase& phase, const Vec3& wo,
                           const PathState& path) {
   const PhotonMerging& pm = *ctx.options.photons;
-  const Rgb sigma_s = ctx.scene.media.coefficients(p, path.ray.time).sigma_s;
-  add_by_group(ctx, pm.map, p, path.throughput * safe_ratio(Rgb(pm.scale()), sigma_s), nullptr,
+  add_by_group(ctx, pm.map, p, path.throughput * pm.scale(), nullptr,
                [&](const Photon& ph) { return Rgb(phase.eval(wo, -ph.dir)); });
 }
 

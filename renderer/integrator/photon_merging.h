@@ -6,7 +6,7 @@
 // medium from light_traced_from events on; a camera path's first scattering
 // vertex x in a medium estimates the light those paths bring it from the
 // photons within a radius r of x,
-//   L(x, wo) sigma_s(x) ~ sum_p phase(wo, -dir_p) weight_p / (N * 4/3 pi r^3),
+//   L(x, wo) ~ sum_p phase(wo, -dir_p) weight_p / (sigma_s(y_p) N 4/3 pi r^3),
 // N the light subpaths traced; and their vertices on diffuse surfaces from
 // light_traced_from events on, so that a camera path whose first event is
 // on a diffuse surface x estimates
