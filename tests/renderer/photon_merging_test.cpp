@@ -4,8 +4,6 @@
 // merge exactly, and the image's metadata says it ran.
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 #include "estimator_agreement.h"
 #include "range_merge.h"
 #include "renderer/integrator/light_tracer.h"
@@ -67,17 +65,10 @@ TEST(PhotonMerging, AgreesWithTheExactEstimatorAtASmallRadius) {
 
 TEST(PhotonMerging, BitwiseIdenticalForOneAndTwoThreads) {
   const Scene scene = build_scene(shaft_scene());
-  RenderOptions one = merging(0.1), two = merging(0.1);
-  one.threads = 1;
-  two.threads = 2;
-  one.spp = two.spp = 4;
-  const RenderResult a = render(scene, one), b = render(scene, two);
-  ASSERT_EQ(a.image.pixels.size(), b.image.pixels.size());
-  EXPECT_EQ(0, std::memcmp(a.image.pixels.data(), b.image.pixels.data(),
-                           a.image.pixels.size() * sizeof(float)));
-  RenderOptions off = exact();
-  off.spp = 4;
-  EXPECT_NE(a.image.pixels, render(scene, off).image.pixels);  // the photons are in it
+  RenderOptions on = merging(0.1), off = exact();
+  on.spp = off.spp = 4;
+  const LayeredImage img = expect_same_bits_on_one_and_two_threads(scene, on);
+  EXPECT_NE(img.pixels, render(scene, off).image.pixels);  // the photons are in it
 }
 
 TEST(PhotonMerging, SampleRangesMergeBitwiseToTheFullRender) {
