@@ -68,60 +68,44 @@ void expect_mean_is(const std::vector<double>& estimates, double truth) {
   EXPECT_LT(se, 0.03 * truth);
 }
 
-TEST(PhotonMerging, KernelEstimatesAUniformDensityWithoutBias) {
-  // N subpaths leave photons uniformly over the unit cube, weight w each,
-  // M photons in all: sum_p weight_p * scale() estimates the weight per
-  // unit volume over N, M w / N, away from the cube's faces. Z-test over
-  // independent maps, alpha = 0.01 (two-sided, |z| < 2.576).
-  std::mt19937 rng(11);
+// m photons of weight w from n subpaths, uniform over the unit cube (dims
+// 3, medium photons) or the unit square z = 0 (dims 2, surface photons):
+// the kernel's estimate at a random point away from the faces, from 60
+// independent maps.
+std::vector<double> kernel_estimates(int dims, size_t m, uint64_t n, float w, float radius,
+                                     uint32_t seed) {
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(0.f, 1.f);
-  const size_t m = 20000;
-  const uint64_t n = 5000;
-  const float w = 0.5f, radius = 0.08f;
-  const double truth = double(m) * w / double(n);
   std::vector<double> estimates;
   for (int trial = 0; trial < 60; ++trial) {
     std::vector<Photon> photons(m);
     for (Photon& p : photons) {
-      p.p = Vec3(u(rng), u(rng), u(rng));
+      p.p = Vec3(u(rng), u(rng), dims == 3 ? u(rng) : 0.f);
+      p.n = dims == 3 ? Vec3(0.f) : Vec3(0, 0, 1);
       p.weight = Rgb(w);
     }
     PhotonMerging pm;
-    pm.map = PhotonMap(std::move(photons), radius);
+    (dims == 3 ? pm.map : pm.surface_map) = PhotonMap(std::move(photons), radius);
     pm.subpaths = n;
+    const Vec3 x(0.3f + 0.4f * u(rng), 0.5f, dims == 3 ? 0.5f : 0.f);
     double sum = 0;
-    pm.map.for_each_near(Vec3(0.3f + 0.4f * u(rng), 0.5f, 0.5f),
-                         [&](const Photon& p) { sum += p.weight.r; });
-    estimates.push_back(sum * pm.scale());
+    (dims == 3 ? pm.map : pm.surface_map).for_each_near(x, [&](const Photon& p) {
+      sum += p.weight.r;
+    });
+    estimates.push_back(sum * (dims == 3 ? pm.scale() : pm.surface_scale()));
   }
-  expect_mean_is(estimates, truth);
+  return estimates;
+}
+
+TEST(PhotonMerging, KernelEstimatesAUniformDensityWithoutBias) {
+  // sum_p weight_p * scale() estimates the weight per unit volume over N,
+  // M w / N.
+  expect_mean_is(kernel_estimates(3, 20000, 5000, 0.5f, 0.08f, 11), 20000 * 0.5 / 5000);
 }
 
 TEST(PhotonMerging, SurfaceKernelEstimatesAUniformDensityWithoutBias) {
-  // The same over the unit square z = 0: M w / N per unit area.
-  std::mt19937 rng(13);
-  std::uniform_real_distribution<float> u(0.f, 1.f);
-  const size_t m = 4000;
-  const uint64_t n = 1000;
-  const float w = 0.25f, radius = 0.06f;
-  const double truth = double(m) * w / double(n);
-  std::vector<double> estimates;
-  for (int trial = 0; trial < 60; ++trial) {
-    std::vector<Photon> photons(m);
-    for (Photon& p : photons) {
-      p.p = Vec3(u(rng), u(rng), 0.f);
-      p.n = Vec3(0, 0, 1);
-      p.weight = Rgb(w);
-    }
-    PhotonMerging pm;
-    pm.surface_map = PhotonMap(std::move(photons), radius);
-    pm.subpaths = n;
-    double sum = 0;
-    pm.surface_map.for_each_near(Vec3(0.2f + 0.6f * u(rng), 0.5f, 0.f),
-                                 [&](const Photon& p) { sum += p.weight.r; });
-    estimates.push_back(sum * pm.surface_scale());
-  }
-  expect_mean_is(estimates, truth);
+  // ... and surface_scale() per unit area.
+  expect_mean_is(kernel_estimates(2, 4000, 1000, 0.25f, 0.06f, 13), 4000 * 0.25 / 1000);
 }
 
 TEST(PhotonMerging, RadiusShrinksAsThePhotonsGrow) {
