@@ -48,8 +48,8 @@ struct PathTracerOptions {
   // end.
   bool light_traced_all = false;
   // Photon merging (photon_merging.h; opt-in, biased): the photons that
-  // take the light-traced paths (light_traced_from) whose first event is in
-  // a medium, in place of light tracing's splats. Not owned.
+  // take the light-traced paths (light_traced_from), in place of light
+  // tracing's splats. Not owned.
   const PhotonMerging* photons = nullptr;
   // Estimate the camera ray's transmittance through the media (layer alpha).
   bool want_camera_transmittance = false;

@@ -1,7 +1,6 @@
 #include "renderer/integrator/photon_merging.h"
 
 #include <cmath>
-
 #include <vector>
 
 #include "renderer/integrator/path_context.h"

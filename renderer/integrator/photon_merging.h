@@ -3,22 +3,20 @@
 // volumetric photon mapping (Jensen & Christensen 1998) for the multiple
 // scattering of fog lit by small lights. Light subpaths (the light
 // tracer's, light_tracer.h) leave a photon at every scattering vertex in a
-// medium from light_traced_from events on; a camera path's first scattering
-// vertex x in a medium estimates the light those paths bring it from the
-// photons within a radius r of x,
-//   L(x, wo) ~ sum_p phase(wo, -dir_p) weight_p / (sigma_s(y_p) N 4/3 pi r^3),
-// N the light subpaths traced; and their vertices on diffuse surfaces from
-// light_traced_from events on, so that a camera path whose first event is
-// on a diffuse surface x estimates
-//   L(x, wo) ~ sum_p f(wo, -dir_p) weight_p / (N * pi r^2)
-// over the photons on x's plane (normals within ~25 degrees, the same side).
-// That takes the same part of path space as
-// light tracing (PathContext::light_traced), so the camera paths leave it
-// out in the same way. The kernel blurs the light over r (bias), and lights
-// the fog within r of a medium's boundary less (part of its sphere lies
-// outside); both vanish as r -> 0, which the radius rule does as the photon
-// count grows (photon_radius). Unlike light tracing it needs no pinhole and
-// works in adaptive renders: every camera sample reads the same photons.
+// medium and on a diffuse surface from light_traced_from events on. A
+// camera path's first scattering vertex x in a medium estimates the light
+// those paths bring it from the photons y within a radius r of x,
+//   L(x, wo) ~ sum_y phase(wo, -dir_y) weight_y / (sigma_s(y) N 4/3 pi r^3),
+// N the light subpaths traced; one on a diffuse surface from the photons on
+// its plane (normals within 26 degrees; the BSDF drops those from behind),
+//   L(x, wo) ~ sum_y f(wo, -dir_y) weight_y / (N pi r^2).
+// That is light tracing's part of path space (PathContext::light_traced),
+// which the camera paths leave out in the same way. The kernel blurs the
+// light over r (bias), and lights the fog within r of a medium's boundary
+// less (part of its ball lies outside); both vanish as r -> 0, which the
+// radius rule does as the photon count grows (photon_radius). Unlike light
+// tracing it needs no pinhole and works in adaptive renders: every camera
+// sample reads the same photons.
 #include <cstdint>
 
 #include "renderer/bsdf/bsdf.h"

@@ -73,7 +73,7 @@ struct RenderOptions {
   // does the indirect clamp (splats would bypass it).
   std::optional<int> light_traced_from;
   // Photon merging (integrator/photon_merging.h; biased, consistent): takes
-  // light tracing's part of path space, first events in media only. Unset:
+  // light tracing's part of path space (in place of light tracing). Unset:
   // render.photon_merging (off by default). Needs media, a point or spot
   // light and no motion blur; otherwise the render is exact as before.
   std::optional<bool> photon_merging;
