@@ -35,9 +35,10 @@ inline LayeredImage expect_same_bits_on_one_and_two_threads(const Scene& scene,
   options.threads = 2;
   const RenderResult b = render(scene, options);
   EXPECT_EQ(a.image.pixels.size(), b.image.pixels.size());
-  if (a.image.pixels.size() == b.image.pixels.size())
+  if (a.image.pixels.size() == b.image.pixels.size()) {
     EXPECT_EQ(0, std::memcmp(a.image.pixels.data(), b.image.pixels.data(),
                              a.image.pixels.size() * sizeof(float)));
+  }
   return a.image;
 }
 
