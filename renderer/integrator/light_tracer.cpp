@@ -92,18 +92,22 @@ bool light_tracing_takes_every_light(const Scene& scene) {
   return true;
 }
 
-bool photon_merging_applies(const Scene& scene) {
+namespace {
+
+// Media, no motion blur, and a light that subpaths start at.
+bool light_subpaths_apply(const Scene& scene) {
   if (scene.media.empty() || scene.motion_blur) return false;
   for (size_t i = 0; i < scene.lights.size(); ++i)
     if (light_is_traced(scene, i)) return true;
   return false;
 }
 
+}  // namespace
+
+bool photon_merging_applies(const Scene& scene) { return light_subpaths_apply(scene); }
+
 bool light_tracing_applies(const Scene& scene) {
-  if (scene.media.empty() || scene.motion_blur || scene.camera.lens_radius > 0.f) return false;
-  for (size_t i = 0; i < scene.lights.size(); ++i)
-    if (light_is_traced(scene, i)) return true;
-  return false;
+  return scene.camera.lens_radius == 0.f && light_subpaths_apply(scene);
 }
 
 namespace {

@@ -34,9 +34,9 @@ struct CameraSplat {
 void trace_light_path(const Scene& scene, const PathTracerOptions& options, Sampler& sampler,
                       uint32_t& rays, std::vector<CameraSplat>& out);
 
-// Traces one light subpath as trace_light_path does and appends its
-// scattering vertices in media, from light_traced_from events on, as
-// photons (photon_merging.h) instead of connecting them to the camera.
+// Traces one light subpath as trace_light_path does and appends the
+// vertices it would connect to the camera (in media and on diffuse
+// surfaces, from light_traced_from events on) as photons (photon_merging.h).
 void trace_photon_path(const Scene& scene, const PathTracerOptions& options, Sampler& sampler,
                        uint32_t& rays, std::vector<Photon>& out);
 

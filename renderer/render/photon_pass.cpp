@@ -17,11 +17,16 @@ constexpr uint64_t kSubpathsPerTask = 1024;
 
 }  // namespace
 
+uint64_t photon_subpaths(const Scene& scene, int frame_spp) {
+  const uint64_t pixels = uint64_t(scene.film.width) * uint64_t(scene.film.height);
+  return std::min(pixels * uint64_t(std::max(frame_spp, 1)), kMaxPhotonSubpaths);
+}
+
 PhotonPassResult trace_photons(const Scene& scene, const PathTracerOptions& pt, uint64_t seed,
                                int frame_spp, float radius, int threads,
                                const std::function<void(uint64_t)>& progress) {
   const uint64_t pixels = uint64_t(scene.film.width) * uint64_t(scene.film.height);
-  const uint64_t total = std::min(pixels * uint64_t(std::max(frame_spp, 1)), kMaxPhotonSubpaths);
+  const uint64_t total = photon_subpaths(scene, frame_spp);
   const uint64_t tasks = (total + kSubpathsPerTask - 1) / kSubpathsPerTask;
   // Each task's photons in their own vector, joined in task order: the map
   // is the same for any thread count.

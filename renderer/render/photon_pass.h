@@ -16,6 +16,9 @@ namespace vesper {
 // few 40-byte photons).
 inline constexpr uint64_t kMaxPhotonSubpaths = uint64_t(1) << 22;
 
+// The light subpaths a frame of `frame_spp` samples per pixel traces.
+uint64_t photon_subpaths(const Scene& scene, int frame_spp);
+
 struct PhotonPassResult {
   PhotonMerging photons;
   uint64_t rays = 0, nonfinite = 0;  // nonfinite: photons dropped as NaN or Inf

@@ -39,8 +39,10 @@ bool photon_merging_runs(const Scene& scene, const RenderOptions& options) {
          photon_merging_applies(scene);
 }
 
+// `photons`: photon_merging_runs, decided once per render.
 PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& options,
-                                      const ChannelLayout& layout, const SamplingPlan& plan) {
+                                      const ChannelLayout& layout, const SamplingPlan& plan,
+                                      bool photons) {
   PathTracerOptions pt;
   pt.max_depth = scene.render.max_depth;
   pt.want_aovs = layout.albedo >= 0 || layout.normal >= 0 || layout.depth >= 0;
@@ -51,16 +53,15 @@ PathTracerOptions path_tracer_options(const Scene& scene, const RenderOptions& o
   pt.want_camera_transmittance = layout.need_transmittance;
   const std::optional<double> clamp = options.clamp ? options.clamp : scene.render.clamp;
   pt.indirect_clamp = float(clamp.value_or(0.0));
-  // Light tracing adds its splats to a fixed sample count per pixel: not
-  // to adaptive renders, whose pixels stop at different counts. Nor with
-  // the indirect clamp, which bounds each camera sample's indirect light:
-  // splats would bypass it.
-  if (photon_merging_runs(scene, options)) {
-    // Photons take light tracing's part of path space (media only).
+  if (photons) {  // photons take light tracing's part of path space, in its place
     pt.light_traced_from = std::max(2, options.light_traced_from.value_or(kLightTracedFrom));
     pt.light_traced_all = light_tracing_takes_every_light(scene);
     return pt;
   }
+  // Light tracing adds its splats to a fixed sample count per pixel: not
+  // to adaptive renders, whose pixels stop at different counts. Nor with
+  // the indirect clamp, which bounds each camera sample's indirect light:
+  // splats would bypass it.
   const int from =
       options.light_traced_from.value_or(light_tracing_pays_off(scene) ? kLightTracedFrom : 0);
   if (from > 0 && light_tracing_applies(scene) && !plan.multipass() && !options.pixel_samples &&
@@ -289,19 +290,16 @@ struct LightPasses {
 
 // The light subpaths run_light_passes traces (progress).
 uint64_t light_subpaths(const Scene& scene, const RenderOptions& options,
-                        const PathTracerOptions& pt, uint64_t camera_most) {
-  if (photon_merging_runs(scene, options))
-    return std::min(uint64_t(scene.film.width) * uint64_t(scene.film.height) *
-                        uint64_t(frame_spp(scene.render, options)),
-                    kMaxPhotonSubpaths);
+                        const PathTracerOptions& pt, uint64_t camera_most, bool photons) {
+  if (photons) return photon_subpaths(scene, frame_spp(scene.render, options));
   return pt.light_traced_from > 0 ? camera_most : 0;
 }
 
 // Traces the photons (pt.photons points at them) or the light tracer's splats.
 void run_light_passes(LightPasses& light, const Scene& scene, const RenderOptions& options,
                       const ChannelLayout& layout, const SamplingPlan& plan, PathTracerOptions& pt,
-                      const std::function<void(uint64_t)>& report) {
-  if (photon_merging_runs(scene, options)) {
+                      bool photons, const std::function<void(uint64_t)>& report) {
+  if (photons) {
     const std::optional<double> radius =
         options.photon_radius ? options.photon_radius : scene.render.photon_radius;
     // Scene units to render space (scene.h).
@@ -331,7 +329,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   const SamplingPlan plan = plan_sampling(scene.render, options);
   const ChannelLayout layout = layout_for(scene, requested_aovs(scene, options, plan),
                                           options.layers, options.layer_variance);
-  PathTracerOptions pt = path_tracer_options(scene, options, layout, plan);
+  const bool photons = photon_merging_runs(scene, options);
+  PathTracerOptions pt = path_tracer_options(scene, options, layout, plan, photons);
 
   RenderResult out;
   LayeredImage& img = out.image;
@@ -352,14 +351,14 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
   // Progress in camera samples, against the most the range allows, after
   // the light subpaths of light tracing or photon merging.
   const uint64_t camera_most = uint64_t(pixels) * uint64_t(plan.cap);
-  const uint64_t most = camera_most + light_subpaths(scene, options, pt, camera_most);
+  const uint64_t most = camera_most + light_subpaths(scene, options, pt, camera_most, photons);
   std::atomic<uint64_t> done{0};
   auto report = [&](uint64_t n) {
     const uint64_t d = done += n;
     if (options.on_progress) options.on_progress(size_t(std::min(d, most)), size_t(most));
   };
   LightPasses light;
-  run_light_passes(light, scene, options, layout, plan, pt, report);
+  run_light_passes(light, scene, options, layout, plan, pt, photons, report);
   pass.splats = light.splats ? &*light.splats : nullptr;
   auto after_tile = [&](const SampleCounts& n) { report(n.camera_samples); };
 
